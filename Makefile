@@ -1,0 +1,36 @@
+# seatwin — all set-up happens here: `make demo` and `make test` create .venv when
+# missing, install the Debian packages the project needs (when run as root) and the
+# package with its dependencies.
+PYTHON ?= python3
+VENV   := .venv
+PY     := $(VENV)/bin/python
+STAMP  := $(VENV)/.installed
+# Debian packages: Mesa EGL for headless rasterising, Chromium to check the HTML report.
+DEB_PACKAGES := libegl1 libgl1-mesa-dri libgl1 chromium
+
+.PHONY: demo test deb venv clean
+
+$(STAMP): pyproject.toml
+	@$(MAKE) --no-print-directory deb
+	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install -q --upgrade pip
+	$(PY) -m pip install -q -e '.[test]'
+	@touch $(STAMP)
+
+venv: $(STAMP)
+
+deb:
+	@if [ "$$(id -u)" = "0" ] && command -v apt-get >/dev/null; then \
+	  missing=""; for p in $(DEB_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	  if [ -n "$$missing" ]; then echo "installing Debian packages:$$missing"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing >/dev/null; fi; \
+	else echo "not root: make sure these Debian packages are installed: $(DEB_PACKAGES)"; fi
+
+demo: $(STAMP)
+	$(VENV)/bin/seatwin demo --out runs/demo
+
+test: $(STAMP)
+	$(PY) -m pytest -q
+
+clean:
+	rm -rf $(VENV) runs build *.egg-info

@@ -1,0 +1,75 @@
+"""The ``seatwin`` command: a typer app that each ``seatwin.cli.<verb>`` module registers into.
+
+Bad input anywhere raises :class:`seatwin.errors.InputError`; :func:`main` prints its one-line
+message and exits with status 2 instead of a traceback.
+"""
+
+from __future__ import annotations
+
+import importlib
+import sys
+from collections.abc import Sequence
+
+import typer
+
+from seatwin import __version__
+from seatwin.errors import InputError
+
+app = typer.Typer(
+    name="seatwin",
+    help="seatwin — a digital twin for testing how autonomous ships perceive the world.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+
+# Each module has ``register(app)``; keep their imports light (heavy imports inside commands)
+# so that ``seatwin --help`` stays fast.
+COMMAND_MODULES: list[str] = [
+]
+
+
+def _version(value: bool) -> None:
+    if value:
+        typer.echo(f"seatwin {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(
+    version: bool = typer.Option(False, "--version", callback=_version, is_eager=True, help="Print the version and exit."),
+) -> None:
+    """seatwin — a digital twin for testing how autonomous ships perceive the world."""
+
+
+for _name in COMMAND_MODULES:
+    importlib.import_module(f"seatwin.cli.{_name}").register(app)
+
+
+def run(argv: Sequence[str] | None = None) -> int:
+    """Run the CLI with ``argv``; return the exit status (used by ``main`` and by tests)."""
+    try:
+        app(args=list(argv) if argv is not None else None, prog_name="seatwin", standalone_mode=False)
+    except InputError as exc:
+        typer.echo(f"seatwin: error: {exc}", err=True)
+        return 2
+    except typer.Exit as exc:
+        return exc.exit_code
+    except typer.Abort:
+        typer.echo("seatwin: aborted", err=True)
+        return 130
+    except KeyboardInterrupt:
+        typer.echo("seatwin: interrupted", err=True)
+        return 130
+    except Exception as exc:  # click's usage errors
+        import click
+
+        if isinstance(exc, click.ClickException):
+            exc.show()
+            return exc.exit_code
+        raise
+    return 0
+
+
+def main() -> None:
+    sys.exit(run())

@@ -1,0 +1,136 @@
+"""The Gemini scenario CSV: ``TimeInSecondsPosix`` (or ``TimeOfDay`` + a date), then
+``V{n}x`` (north, m), ``V{n}y`` (east, m), ``V{n}Heading`` (degrees clockwise from north) for
+vessels n = 1, 2, … (see ``shared/data/README.md``).
+"""
+
+from __future__ import annotations
+
+import csv
+import datetime as dt
+import os
+import re
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from seatwin.errors import InputError
+from seatwin.geo import deg_to_rad_heading, rad_to_deg_heading
+from seatwin.scenario.model import Trajectory
+
+TIME_POSIX = "TimeInSecondsPosix"
+TIME_OF_DAY = "TimeOfDay"
+_VESSEL_COLUMN = re.compile(r"^V(\d+)(x|y|Heading)$")
+
+
+def _parse_time_of_day(text: str, date: dt.date, path: Path, line: int) -> float:
+    try:
+        t = dt.time.fromisoformat(text.strip())
+    except ValueError:
+        raise InputError(path, f"expected HH:MM:SS[.fff] in {TIME_OF_DAY}, got {text!r}", where=f"line {line}") from None
+    return dt.datetime.combine(date, t, tzinfo=dt.timezone.utc).timestamp()
+
+
+def read_gemini_csv(path: str | os.PathLike[str], date: dt.date | None = None) -> dict[int, Trajectory]:
+    """Read a Gemini scenario CSV into one trajectory per vessel number.
+
+    ``date`` (UTC) is required when the file has ``TimeOfDay`` instead of POSIX seconds.
+    Raises :class:`InputError` naming the file, line and column for any malformed value.
+    """
+    path = Path(path)
+    try:
+        handle = path.open(newline="")
+    except OSError as exc:
+        raise InputError(path, f"cannot open: {exc.strerror}") from None
+    with handle:
+        reader = csv.reader(handle)
+        header = next(reader, None)
+        if header is None:
+            raise InputError(path, "empty file, expected a header line")
+        header = [h.strip() for h in header]
+        if TIME_POSIX in header:
+            time_col, posix = header.index(TIME_POSIX), True
+        elif TIME_OF_DAY in header:
+            time_col, posix = header.index(TIME_OF_DAY), False
+            if date is None:
+                raise InputError(path, f"the file has {TIME_OF_DAY}; give the recording date (UTC) to place it in time")
+        else:
+            raise InputError(path, f"expected a {TIME_POSIX} or {TIME_OF_DAY} column", where="line 1")
+        columns: dict[int, dict[str, int]] = {}
+        for i, name in enumerate(header):
+            m = _VESSEL_COLUMN.match(name)
+            if m:
+                columns.setdefault(int(m.group(1)), {})[m.group(2)] = i
+        if not columns:
+            raise InputError(path, "no vessel columns V{n}x, V{n}y, V{n}Heading", where="line 1")
+        for n, cols in sorted(columns.items()):
+            missing = [f"V{n}{k}" for k in ("x", "y", "Heading") if k not in cols]
+            if missing:
+                raise InputError(path, f"missing column(s) {', '.join(missing)}", where="line 1")
+        rows: list[list[float]] = []
+        for line_no, row in enumerate(reader, start=2):
+            if not row or all(not c.strip() for c in row):
+                continue
+            if len(row) != len(header):
+                raise InputError(path, f"expected {len(header)} fields, got {len(row)}", where=f"line {line_no}")
+            values = []
+            for i, cell in enumerate(row):
+                if i == time_col and not posix:
+                    values.append(_parse_time_of_day(cell, date, path, line_no))  # type: ignore[arg-type]
+                    continue
+                try:
+                    v = float(cell)
+                except ValueError:
+                    raise InputError(path, f"expected a number, got {cell!r}", where=f"line {line_no}, column {header[i]}") from None
+                if not np.isfinite(v):
+                    raise InputError(path, f"expected a finite number, got {cell!r}", where=f"line {line_no}, column {header[i]}")
+                values.append(v)
+            rows.append(values)
+    if len(rows) < 2:
+        raise InputError(path, f"expected at least 2 data lines, got {len(rows)}")
+    data = np.asarray(rows, dtype=float)
+    time = data[:, time_col]
+    steps = np.diff(time)
+    if (steps <= 0).any():
+        k = int(np.flatnonzero(steps <= 0)[0]) + 1
+        kind = "duplicated" if steps[k - 1] == 0 else "decreasing"
+        raise InputError(path, f"{kind} time {time[k]!r} after {time[k - 1]!r}", where=f"line {k + 2}")
+    return {
+        n: Trajectory(
+            time=time,
+            north=data[:, cols["x"]],
+            east=data[:, cols["y"]],
+            heading=deg_to_rad_heading(data[:, cols["Heading"]]),
+            source=f"{path} (vessel {n})",
+        )
+        for n, cols in sorted(columns.items())
+    }
+
+
+def write_gemini_csv(
+    path: str | os.PathLike[str], trajectories: list[Trajectory], time: NDArray[np.float64] | None = None
+) -> None:
+    """Write trajectories as a Gemini CSV, vessels numbered 1, 2, … in the order given.
+
+    All trajectories are sampled at ``time`` (default: the first trajectory's samples; every
+    trajectory must cover it). Written to a temporary file and renamed, so a failure leaves no
+    half-written output.
+    """
+    path = Path(path)
+    if not trajectories:
+        raise InputError(path, "nothing to write: no trajectories")
+    t = trajectories[0].time if time is None else np.asarray(time, float)
+    columns = [t]
+    header = [TIME_POSIX]
+    for n, traj in enumerate(trajectories, start=1):
+        s = traj.state_at(t)
+        columns += [s.north, s.east, np.asarray(rad_to_deg_heading(s.heading))]
+        header += [f"V{n}x", f"V{n}y", f"V{n}Heading"]
+    tmp = path.with_name(path.name + ".part")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with tmp.open("w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(header)
+        for row in zip(*columns):
+            w.writerow([repr(float(v)) for v in row])
+    os.replace(tmp, path)

@@ -1,0 +1,81 @@
+"""The default built-in harbour, as data: a channel about 150 m wide with quays, like Ravnkloa.
+
+Local NED frame (x north, y east), metres, heights above the calm water surface (z = 0).
+The channel runs north–south: water for |east| < ``half_width``; land (quays at
+``quay_height``) beyond. Built-in scenarios keep their vessels on the water of this layout;
+:mod:`seatwin.world.harbour` builds its 3-D form.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+
+@dataclass(frozen=True)
+class Box:
+    """An axis-aligned block: north/east extents, from the water (or ``base``) up to ``top``."""
+
+    name: str
+    north_min: float
+    north_max: float
+    east_min: float
+    east_max: float
+    top: float
+    base: float = -2.0
+
+
+@dataclass(frozen=True)
+class MooredBoat:
+    name: str
+    north: float
+    east: float
+    heading_deg: float
+    length: float
+    beam: float
+    height: float
+
+
+@dataclass(frozen=True)
+class HarbourLayout:
+    half_width: float = 75.0
+    """Half the channel width [m]: water for |east| < half_width."""
+    north_min: float = -400.0
+    north_max: float = 400.0
+    land_depth: float = 60.0
+    """How far the quay land extends beyond the water edge [m]."""
+    quay_height: float = 1.8
+    """Quay top above the water [m] (Ravnkloa's quays are about 1.5–2 m)."""
+    piers: tuple[Box, ...] = field(
+        default_factory=lambda: (
+            # A pier from the west quay: the obstacle a target emerges from behind (scenario 9).
+            Box("west_pier", 40.0, 52.0, -75.0, -30.0, 1.2),
+            # A short floating pier on the east side with moored boats.
+            Box("east_pier", -120.0, -116.0, 45.0, 75.0, 0.6),
+        )
+    )
+    buildings: tuple[Box, ...] = field(
+        default_factory=lambda: (
+            Box("warehouse_west", -200.0, -120.0, -130.0, -85.0, 12.0, base=0.0),
+            Box("market_hall", 90.0, 150.0, -125.0, -88.0, 9.0, base=0.0),
+            Box("office_east", -60.0, 10.0, 88.0, 125.0, 18.0, base=0.0),
+            Box("boathouse_east", 160.0, 200.0, 85.0, 110.0, 7.0, base=0.0),
+        )
+    )
+    moored_boats: tuple[MooredBoat, ...] = field(
+        default_factory=lambda: (
+            MooredBoat("moored_sailboat", -100.0, 67.0, 0.0, 9.0, 3.0, 1.6),
+            MooredBoat("moored_launch", -130.0, 68.0, 180.0, 6.0, 2.2, 1.2),
+            MooredBoat("moored_trawler", 120.0, 67.0, 0.0, 18.0, 5.5, 4.0),
+            MooredBoat("moored_dinghy", 30.0, -70.0, 90.0, 3.5, 1.5, 0.6),
+            MooredBoat("moored_cruiser", -30.0, -69.0, 180.0, 11.0, 3.6, 2.8),
+        )
+    )
+
+    def is_water(self, north: float, east: float) -> bool:
+        """True on open water (inside the channel and not under a pier)."""
+        if not (self.north_min <= north <= self.north_max and abs(east) < self.half_width):
+            return False
+        return not any(p.north_min <= north <= p.north_max and p.east_min <= east <= p.east_max for p in self.piers)
+
+
+DEFAULT_LAYOUT = HarbourLayout()
