@@ -5,21 +5,23 @@ in the thesis, R_M = R_N (1−e²)/√(1−e² sin² x₀), is wrong: the meridi
 R_M = R_N (1−e²)/(1−e² sin² x₀) = r_e (1−e²)/(1−e² sin² x₀)^{3/2}. The correct form is the
 default; the printed one is kept as ``meridian="printed"`` for reproducing the thesis.
 
-Measured against the exact conversion (``pymap3d``, WGS-84) at 63.43° N, 10.39° E, h = 0,
-for a point at the given horizontal distance (worst of eight bearings,
-``tests/geo/test_flat_earth.py`` recomputes these):
+Measured against the exact conversion (``pymap3d``, WGS-84) at 63.43° N, 10.39° E, h = 0:
+horizontal error of the flat-earth NED of a point whose exact NED is at the given horizontal
+distance (down = 0), worst of eight bearings (``tests/geo/test_flat_earth.py`` recomputes these):
 
 =========  ===================  ========================
 distance   correct R_M (3.5')   printed R_M (3.5)
 =========  ===================  ========================
-100 m      0.0008 m             0.053 m
-1 km       0.079 m              0.53 m
-5 km       1.96 m               4.2 m
+100 m      0.0017 m             0.27 m
+1 km       0.17 m               2.7 m
+5 km       4.4 m                13.4 m
 =========  ===================  ========================
 
-(The flat-earth error grows with the square of the distance, mostly because it ignores
-Earth curvature in the down axis and the convergence of meridians; the printed eq. 3.5
-adds a scale error of about e² sin² x₀ / 2 ≈ 0.27 ‰ north–south.)
+(The correct-R_M error grows with the square of the distance and comes from the convergence
+of meridians: a parallel is not a straight line in the tangent plane, so at 5 km due east the
+flat-earth north is 3.9 m off, ≈ d² tan x₀ / 2R, and at 45° the east is 3.9 m off. The printed
+eq. 3.5 adds a north–south scale error of 1 − √(1 − e² sin² x₀) ≈ e² sin² x₀ / 2 ≈ 2.7 ‰ at
+63.43° N, which dominates up to several kilometres.)
 """
 
 from __future__ import annotations
@@ -102,7 +104,8 @@ def llh_to_ned_flat(
     """Flat-earth LLH → NED, thesis eqs. 3.2 (north) and 3.3 (east); down = −(h − h₀)."""
     r_m, r_n = _radii(origin, meridian)
     dlat = np.radians(np.asarray(lat_deg, float) - origin.lat_deg)
-    dlon = np.radians(np.asarray(lon_deg, float) - origin.lon_deg)
+    # Longitude difference wrapped to [−180°, 180°) so points across the antimeridian stay near.
+    dlon = np.radians((np.asarray(lon_deg, float) - origin.lon_deg + 180.0) % 360.0 - 180.0)
     north = dlat / np.arctan2(1.0, r_m)
     east = dlon / np.arctan2(1.0, r_n * np.cos(np.radians(origin.lat_deg)))
     down = -(np.asarray(height_m, float) - origin.height_m)

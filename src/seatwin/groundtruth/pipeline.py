@@ -1,0 +1,156 @@
+"""From antenna log files to vessel ground truth and the output files (thesis §3.3.2).
+
+read each file → one common clock over the overlap of all antennas → per vessel NED
+(flat earth, eqs. 3.2–3.5), position, heading, ε_gnss, flags → trajectories, Gemini CSV,
+quality JSON, figures. Outputs are written to temporary names and renamed only when all
+of them are complete, so an error leaves no half-written output.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import tempfile
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from seatwin.errors import InputError
+from seatwin.geo import GeodeticOrigin
+from seatwin.geo.flat_earth import Meridian
+from seatwin.groundtruth.detect import read_antenna_log
+from seatwin.groundtruth.log import AntennaLog
+from seatwin.groundtruth.resample import DEFAULT_MAX_GAP_S, DEFAULT_RATE_HZ, common_clock, resample_log
+from seatwin.groundtruth.vessel import (
+    DEFAULT_EPS_THRESHOLD_M,
+    DEFAULT_MIN_COG_SPEED,
+    DEFAULT_SMOOTH_S,
+    VesselGroundTruth,
+    VesselSpec,
+    build_vessel,
+)
+from seatwin.scenario.model import Role, Scenario, Trajectory, Vessel
+
+
+@dataclass
+class GroundTruthResult:
+    """Every vessel's ground truth on one clock, and the settings that produced it."""
+
+    origin: GeodeticOrigin
+    rate_hz: float
+    meridian: str
+    max_gap_s: float
+    time: NDArray[np.float64]
+    vessels: list[VesselGroundTruth]
+
+    def trajectories(self) -> list[Trajectory]:
+        """One trajectory per vessel, in the order given (vessel numbers 1, 2, …)."""
+        return [v.trajectory() for v in self.vessels]
+
+    def scenario(self, name: str = "groundtruth", ownship: str | None = None) -> Scenario:
+        """A :class:`Scenario` of the vessels (all targets, except ``ownship`` if named)."""
+        vessels = [
+            Vessel(v.name, Role.OWNSHIP if v.name == ownship else Role.TARGET, v.trajectory()) for v in self.vessels
+        ]
+        return Scenario(name, vessels, origin=self.origin, rig=None, source=name)
+
+
+def compute_ground_truth(
+    specs: Sequence[VesselSpec],
+    origin: GeodeticOrigin,
+    *,
+    rate_hz: float = DEFAULT_RATE_HZ,
+    meridian: Meridian = "correct",
+    eps_threshold_m: float = DEFAULT_EPS_THRESHOLD_M,
+    max_gap_s: float = DEFAULT_MAX_GAP_S,
+    smooth_s: float = DEFAULT_SMOOTH_S,
+    min_cog_speed: float = DEFAULT_MIN_COG_SPEED,
+    logs: dict[Path, AntennaLog] | None = None,
+) -> GroundTruthResult:
+    """Read every vessel's antenna files (or take them from ``logs``) and build the ground truth."""
+    if not specs:
+        raise InputError("--vessel", "give at least one vessel")
+    names = [s.name for s in specs]
+    dup = sorted({n for n in names if names.count(n) > 1})
+    if dup:
+        raise InputError("--vessel", f"vessel names must be unique, repeated: {dup}")
+    for what, value in (("--eps-threshold", eps_threshold_m), ("--max-gap", max_gap_s)):
+        if not np.isfinite(value) or value <= 0:
+            raise InputError(what, f"must be a positive number, got {value!r}")
+    if not np.isfinite(smooth_s) or smooth_s < 0:
+        raise InputError("--smooth", f"must be zero or a positive number of seconds, got {smooth_s!r}")
+    if meridian not in ("correct", "printed"):
+        raise InputError("--meridian", f"expected 'correct' or 'printed', got {meridian!r}")
+    logs = dict(logs or {})
+    for spec in specs:
+        for f in spec.files:
+            if f not in logs:
+                logs[f] = read_antenna_log(f)
+    all_logs = [logs[f] for spec in specs for f in spec.files]
+    time = common_clock(all_logs, rate_hz)
+    vessels = []
+    for spec in specs:
+        antennas = [resample_log(logs[f], time, max_gap_s) for f in spec.files]
+        vessels.append(
+            build_vessel(
+                spec, antennas, origin, meridian=meridian, eps_threshold_m=eps_threshold_m,
+                smooth_s=smooth_s, min_cog_speed=min_cog_speed,
+            )  # fmt: skip
+        )
+    return GroundTruthResult(origin, float(rate_hz), meridian, float(max_gap_s), time, vessels)
+
+
+def write_outputs(
+    result: GroundTruthResult,
+    out_csv: str | os.PathLike[str],
+    quality_json: str | os.PathLike[str] | None = None,
+    plots_dir: str | os.PathLike[str] | None = None,
+) -> list[Path]:
+    """Write the Gemini CSV, and optionally the quality report and figures; all or nothing.
+
+    Returns the paths written.
+    """
+    from seatwin.groundtruth.report import quality_report
+    from seatwin.scenario.gemini_csv import write_gemini_csv
+
+    out_csv = Path(out_csv)
+    pending: list[tuple[Path, Path]] = []  # (temporary, final)
+    tmp_dirs: list[Path] = []
+    try:
+        out_csv.parent.mkdir(parents=True, exist_ok=True)
+        tmp = out_csv.with_name(f".{out_csv.name}.tmp")
+        write_gemini_csv(tmp, result.trajectories(), time=result.time)
+        pending.append((tmp, out_csv))
+        if quality_json is not None:
+            qpath = Path(quality_json)
+            qpath.parent.mkdir(parents=True, exist_ok=True)
+            qtmp = qpath.with_name(f".{qpath.name}.tmp")
+            pending.append((qtmp, qpath))
+            qtmp.write_text(json.dumps(quality_report(result), indent=2, allow_nan=False) + "\n")
+        if plots_dir is not None:
+            from seatwin.groundtruth.plots import write_plots
+
+            pdir = Path(plots_dir)
+            if pdir.exists() and not pdir.is_dir():
+                raise InputError("--plots", f"{pdir} exists and is not a folder")
+            pdir.parent.mkdir(parents=True, exist_ok=True)
+            staging = Path(tempfile.mkdtemp(prefix=f".{pdir.name}.", dir=pdir.parent))
+            tmp_dirs.append(staging)
+            for f in write_plots(result, staging):
+                pending.append((f, pdir / f.name))
+            pdir.mkdir(exist_ok=True)
+        for tmp_path, final in pending:
+            os.replace(tmp_path, final)
+    except BaseException:
+        (out_csv.with_name(f".{out_csv.name}.tmp.part")).unlink(missing_ok=True)
+        for tmp_path, _ in pending:
+            tmp_path.unlink(missing_ok=True)
+        raise
+    finally:
+        for d in tmp_dirs:
+            shutil.rmtree(d, ignore_errors=True)
+    return [final for _, final in pending]
