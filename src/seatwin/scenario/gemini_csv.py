@@ -10,6 +10,7 @@ import datetime as dt
 import os
 import re
 from pathlib import Path
+from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
@@ -68,6 +69,8 @@ def read_gemini_csv(path: str | os.PathLike[str], date: dt.date | None = None) -
             if missing:
                 raise InputError(path, f"missing column(s) {', '.join(missing)}", where="line 1")
         rows: list[list[float]] = []
+        row_lines: list[int] = []
+        time_text: list[str] = []
         for line_no, row in enumerate(reader, start=2):
             if not row or all(not c.strip() for c in row):
                 continue
@@ -86,6 +89,8 @@ def read_gemini_csv(path: str | os.PathLike[str], date: dt.date | None = None) -
                     raise InputError(path, f"expected a finite number, got {cell!r}", where=f"line {line_no}, column {header[i]}")
                 values.append(v)
             rows.append(values)
+            row_lines.append(line_no)
+            time_text.append(row[time_col].strip())
     if len(rows) < 2:
         raise InputError(path, f"expected at least 2 data lines, got {len(rows)}")
     data = np.asarray(rows, dtype=float)
@@ -94,7 +99,11 @@ def read_gemini_csv(path: str | os.PathLike[str], date: dt.date | None = None) -
     if (steps <= 0).any():
         k = int(np.flatnonzero(steps <= 0)[0]) + 1
         kind = "duplicated" if steps[k - 1] == 0 else "decreasing"
-        raise InputError(path, f"{kind} time {time[k]!r} after {time[k - 1]!r}", where=f"line {k + 2}")
+        raise InputError(
+            path,
+            f"{kind} time {time_text[k]} after {time_text[k - 1]} (line {row_lines[k - 1]}); times must increase",
+            where=f"line {row_lines[k]}",
+        )
     return {
         n: Trajectory(
             time=time,
@@ -107,30 +116,55 @@ def read_gemini_csv(path: str | os.PathLike[str], date: dt.date | None = None) -
     }
 
 
+def _times_of_day(time: NDArray[np.float64], path: Path) -> tuple[list[str], dt.date]:
+    """POSIX seconds → ``HH:MM:SS.fff`` (µs when needed) and their UTC date; one day only."""
+    stamps = [dt.datetime.fromtimestamp(float(t), tz=dt.timezone.utc) for t in time]
+    if stamps[0].date() != stamps[-1].date():
+        raise InputError(path, f"{TIME_OF_DAY} cannot span midnight UTC ({stamps[0]} to {stamps[-1]}); write {TIME_POSIX}")
+    spec = "milliseconds" if all(s.microsecond % 1000 == 0 for s in stamps) else "microseconds"
+    return [s.time().isoformat(timespec=spec) for s in stamps], stamps[0].date()
+
+
 def write_gemini_csv(
-    path: str | os.PathLike[str], trajectories: list[Trajectory], time: NDArray[np.float64] | None = None
-) -> None:
+    path: str | os.PathLike[str],
+    trajectories: list[Trajectory],
+    time: NDArray[np.float64] | None = None,
+    time_format: Literal["posix", "time_of_day"] = "posix",
+) -> dt.date | None:
     """Write trajectories as a Gemini CSV, vessels numbered 1, 2, … in the order given.
 
     All trajectories are sampled at ``time`` (default: the first trajectory's samples; every
-    trajectory must cover it). Written to a temporary file and renamed, so a failure leaves no
-    half-written output.
+    trajectory must cover it). ``time_format="time_of_day"`` writes ``TimeOfDay`` and returns
+    the UTC date a reader needs (``None`` for POSIX). Written to a temporary file and renamed,
+    so a failure leaves no half-written output.
     """
     path = Path(path)
     if not trajectories:
         raise InputError(path, "nothing to write: no trajectories")
+    if time_format not in ("posix", "time_of_day"):
+        raise InputError(path, f"time_format must be 'posix' or 'time_of_day', got {time_format!r}")
     t = trajectories[0].time if time is None else np.asarray(time, float)
-    columns = [t]
-    header = [TIME_POSIX]
+    date = None
+    if time_format == "posix":
+        time_cells = [repr(float(v)) for v in t]
+        header = [TIME_POSIX]
+    else:
+        time_cells, date = _times_of_day(t, path)
+        header = [TIME_OF_DAY]
+    columns = []
     for n, traj in enumerate(trajectories, start=1):
         s = traj.state_at(t)
         columns += [s.north, s.east, np.asarray(rad_to_deg_heading(s.heading))]
         header += [f"V{n}x", f"V{n}y", f"V{n}Heading"]
     tmp = path.with_name(path.name + ".part")
     path.parent.mkdir(parents=True, exist_ok=True)
-    with tmp.open("w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(header)
-        for row in zip(*columns):
-            w.writerow([repr(float(v)) for v in row])
-    os.replace(tmp, path)
+    try:
+        with tmp.open("w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(header)
+            for cell, row in zip(time_cells, zip(*columns)):
+                w.writerow([cell] + [repr(float(v)) for v in row])
+        os.replace(tmp, path)
+    finally:
+        tmp.unlink(missing_ok=True)
+    return date

@@ -90,8 +90,13 @@ class Trajectory:
 
     @property
     def rate_hz(self) -> float:
-        """Median sample rate."""
-        return float(1.0 / np.median(np.diff(self.time)))
+        """Sample rate: over the whole span when the steps are even (exact despite the rounding of
+        large POSIX times), else from the median step."""
+        steps = np.diff(self.time)
+        median = float(np.median(steps))
+        if np.ptp(steps) <= 1e-3 * median:
+            return float((len(self.time) - 1) / (self.time[-1] - self.time[0]))
+        return 1.0 / median
 
     def state_at(self, t: ArrayLike) -> VesselState:
         """Interpolated state at time(s) ``t``; an :class:`InputError` outside the time span."""
@@ -153,6 +158,7 @@ class Scenario:
     rig: str | None = "milliampere"
     """Name of the ownship's sensor rig."""
     source: str = "<memory>"
+    description: str = ""
 
     def __post_init__(self) -> None:
         if not self.vessels:

@@ -1,0 +1,99 @@
+"""What a scenario holds: vessels, span, rate, speeds and closest approaches, as plain data."""
+
+from __future__ import annotations
+
+import datetime as dt
+from itertools import combinations
+from typing import Any
+
+import numpy as np
+
+from seatwin.scenario.model import Scenario, Trajectory
+from seatwin.world.layout import DEFAULT_LAYOUT
+
+
+def water_fraction(north: np.ndarray, east: np.ndarray) -> float:
+    """Fraction of the points on the default harbour's open water."""
+    on = [DEFAULT_LAYOUT.is_water(float(n), float(e)) for n, e in zip(north, east)]
+    return float(np.mean(on)) if on else 0.0
+
+
+def closest_approach(a: Trajectory, b: Trajectory, start: float | None = None, end: float | None = None) -> tuple[float, float]:
+    """(distance [m], POSIX time) of the closest approach of two trajectories within their common span.
+
+    Exact for the model's linear interpolation: between consecutive sample times of either
+    trajectory the relative position moves on a straight line, whose nearest point is solved
+    in closed form.
+    """
+    lo = max(a.start, b.start) if start is None else start
+    hi = min(a.end, b.end) if end is None else end
+    if hi < lo:
+        raise ValueError(f"the trajectories do not overlap in time ({a.source}, {b.source})")
+    t = np.union1d(a.time, b.time)
+    t = np.unique(np.concatenate([[lo, hi], t[(t > lo) & (t < hi)]]))
+    sa, sb = a.state_at(t), b.state_at(t)
+    rel = np.stack([sb.north - sa.north, sb.east - sa.east], axis=1)
+    if len(t) == 1:
+        return float(np.hypot(*rel[0])), float(t[0])
+    p0, d = rel[:-1], np.diff(rel, axis=0)
+    dd = (d * d).sum(axis=1)
+    u = np.clip(np.divide(-(p0 * d).sum(axis=1), dd, out=np.zeros_like(dd), where=dd > 0), 0.0, 1.0)
+    dist = np.hypot(*(p0 + u[:, None] * d).T)
+    k = int(np.argmin(dist))
+    return float(dist[k]), float(t[k] + u[k] * (t[k + 1] - t[k]))
+
+
+def _iso(t: float) -> str:
+    return dt.datetime.fromtimestamp(t, tz=dt.timezone.utc).isoformat(timespec="milliseconds")
+
+
+def scenario_summary(scenario: Scenario) -> dict[str, Any]:
+    """A JSON-ready summary: span, rate, per-vessel speeds (min/mean/max over the samples in the
+    common span), path lengths, and each pair's closest approach (distance, time). In the default
+    harbour, ``on_water`` is the fraction of each vessel's samples on its open water (a Gemini
+    CSV recorded elsewhere shows up here), else ``None``."""
+    start, end = scenario.start, scenario.end
+    default_harbour = scenario.environment.get("harbour", "default") == "default"
+    vessels = []
+    for v in scenario.vessels:
+        tr = v.trajectory
+        times = tr.time[(tr.time >= start - 1e-9) & (tr.time <= end + 1e-9)]
+        if len(times) == 0:
+            times = np.array([start, end])
+        s = tr.state_at(times)
+        vessels.append(
+            {
+                "name": v.name,
+                "role": v.role.value,
+                "model": v.model,
+                "dimensions": None if v.dimensions is None else vars(v.dimensions).copy(),
+                "samples": int(len(tr.time)),
+                "rate_hz": round(tr.rate_hz, 3),
+                "speed_mps": {"min": float(s.speed.min()), "mean": float(s.speed.mean()), "max": float(s.speed.max())},
+                "distance_m": float(np.hypot(np.diff(s.north), np.diff(s.east)).sum()),
+                "start_ned": [float(s.north[0]), float(s.east[0])],
+                "end_ned": [float(s.north[-1]), float(s.east[-1])],
+                "on_water": water_fraction(s.north, s.east) if default_harbour else None,
+            }
+        )
+    pairs = []
+    for va, vb in combinations(scenario.vessels, 2):
+        d, t = closest_approach(va.trajectory, vb.trajectory, start, end)
+        pairs.append({"a": va.name, "b": vb.name, "distance_m": d, "time": t, "time_from_start_s": t - start})
+    origin = scenario.origin
+    return {
+        "name": scenario.name,
+        "description": scenario.description,
+        "source": scenario.source,
+        "start": start,
+        "start_utc": _iso(start),
+        "end": end,
+        "duration_s": end - start,
+        "rate_hz": round(float(np.median([v.trajectory.rate_hz for v in scenario.vessels])), 3),
+        "origin": None if origin is None else {"lat": origin.lat_deg, "lon": origin.lon_deg, "height": origin.height_m},
+        "seed": scenario.seed,
+        "environment": dict(scenario.environment),
+        "rig": scenario.rig,
+        "vessels": vessels,
+        "closest_approach": pairs,
+    }

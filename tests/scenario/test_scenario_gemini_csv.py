@@ -1,0 +1,106 @@
+"""Gemini CSV: round trips with POSIX and TimeOfDay times, and malformed files."""
+
+from __future__ import annotations
+
+import datetime as dt
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from seatwin.errors import InputError
+from seatwin.scenario.gemini_csv import read_gemini_csv, write_gemini_csv
+from seatwin.scenario.model import Trajectory
+
+START = 1600171085.3  # 2020-09-15 11:58:05.3 UTC
+
+
+def _trajectories() -> list[Trajectory]:
+    t = START + np.arange(50) / 10.0
+    k = np.arange(50)
+    return [
+        Trajectory(t, -300 + 0.3 * k, -315 + 0.2 * k, np.radians(175.0 + 0.4 * k)),  # crosses ±180°
+        Trajectory(t, 10.0 + 0.0 * k, 5.0 - 0.25 * k, np.full(50, -np.pi / 2)),
+        Trajectory(t, -36.1 + 0.01 * k, 15.1 + 0.0 * k, np.radians(-125.0 + 0.1 * k)),
+    ]
+
+
+def _assert_same(a: dict[int, Trajectory], b: list[Trajectory], time_atol: float = 0.0) -> None:
+    assert sorted(a) == [1, 2, 3]
+    for n, ref in enumerate(b, start=1):
+        got = a[n]
+        np.testing.assert_allclose(got.time, ref.time, rtol=0, atol=time_atol)
+        np.testing.assert_allclose(got.north, ref.north, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(got.east, ref.east, rtol=0, atol=1e-12)
+        dh = np.angle(np.exp(1j * (got.heading - ref.heading)))
+        assert np.abs(dh).max() < 1e-12
+
+
+def test_posix_round_trip_is_exact(tmp_path: Path):
+    trs = _trajectories()
+    assert write_gemini_csv(tmp_path / "s.csv", trs) is None
+    back = read_gemini_csv(tmp_path / "s.csv")
+    _assert_same(back, trs)
+    assert (tmp_path / "s.csv").read_text().splitlines()[0] == (
+        "TimeInSecondsPosix,V1x,V1y,V1Heading,V2x,V2y,V2Heading,V3x,V3y,V3Heading"
+    )
+    assert not list(tmp_path.glob("*.part"))
+
+
+def test_time_of_day_round_trip_needs_the_date(tmp_path: Path):
+    trs = _trajectories()
+    date = write_gemini_csv(tmp_path / "s.csv", trs, time_format="time_of_day")
+    assert date == dt.date(2020, 9, 15)
+    lines = (tmp_path / "s.csv").read_text().splitlines()
+    assert lines[0].startswith("TimeOfDay,V1x")
+    assert lines[1].startswith("11:58:05.300,")
+    with pytest.raises(InputError, match="TimeOfDay; give the recording date"):
+        read_gemini_csv(tmp_path / "s.csv")
+    _assert_same(read_gemini_csv(tmp_path / "s.csv", date=date), trs, time_atol=1e-6)
+
+
+def test_time_of_day_cannot_span_midnight(tmp_path: Path):
+    t = 1600214399.5 + np.arange(3) * 0.5  # 23:59:59.5 → 00:00:00.5
+    tr = Trajectory(t, [0, 1, 2], [0, 0, 0], [0, 0, 0])
+    with pytest.raises(InputError, match="midnight"):
+        write_gemini_csv(tmp_path / "m.csv", [tr], time_format="time_of_day")
+    assert not (tmp_path / "m.csv").exists()
+
+
+HEADER = "TimeInSecondsPosix,V1x,V1y,V1Heading\n"
+
+
+@pytest.mark.parametrize(
+    ("text", "pattern"),
+    [
+        ("", r"empty file"),
+        ("Time,V1x,V1y,V1Heading\n1,0,0,0\n", r"line 1: expected a TimeInSecondsPosix or TimeOfDay column"),
+        ("TimeInSecondsPosix,V1x,V1Heading\n1,0,0\n2,0,0\n", r"line 1: missing column\(s\) V1y"),
+        ("TimeInSecondsPosix,foo\n1,0\n2,0\n", r"line 1: no vessel columns"),
+        (HEADER + "1,0,0,0\n2,0,abc,0\n", r"line 3, column V1y: expected a number, got 'abc'"),
+        (HEADER + "1,0,0,0\n2,0,0,nan\n", r"line 3, column V1Heading: expected a finite number, got 'nan'"),
+        (HEADER + "1,0,0,0\n2,0,0\n", r"line 3: expected 4 fields, got 3"),
+        (HEADER + "1,0,0,0\n2,0,0,0\n2,1,0,0\n", r"line 4: duplicated time 2 after 2 \(line 3\)"),
+        (HEADER + "1,0,0,0\n3,0,0,0\n2,1,0,0\n", r"line 4: decreasing time 2 after 3"),
+        (HEADER + "1,0,0,0\n", r"at least 2 data lines"),
+        ("TimeOfDay,V1x,V1y,V1Heading\n12:00:00.0,0,0,0\n12:00:xx,0,0,0\n", r"line 3: expected HH:MM:SS"),
+    ],
+)
+def test_malformed_csv_names_file_and_line(tmp_path: Path, text: str, pattern: str):
+    path = tmp_path / "bad.csv"
+    path.write_text(text)
+    with pytest.raises(InputError, match=pattern) as info:
+        read_gemini_csv(path, date=dt.date(2020, 9, 15))
+    assert str(path) in str(info.value)
+
+
+def test_missing_file(tmp_path: Path):
+    with pytest.raises(InputError, match="cannot open"):
+        read_gemini_csv(tmp_path / "nope.csv")
+
+
+def test_line_numbers_count_blank_lines(tmp_path: Path):
+    path = tmp_path / "gaps.csv"
+    path.write_text(HEADER + "1,0,0,0\n\n2,0,0,0\n\n1.5,0,0,0\n")
+    with pytest.raises(InputError, match=r"line 6: decreasing time 1\.5 after 2 \(line 4\)"):
+        read_gemini_csv(path)
