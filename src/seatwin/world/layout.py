@@ -59,6 +59,9 @@ class HarbourLayout:
             Box("market_hall", 90.0, 150.0, -125.0, -88.0, 9.0, base=0.0),
             Box("office_east", -60.0, 10.0, 88.0, 125.0, 18.0, base=0.0),
             Box("boathouse_east", 160.0, 200.0, 85.0, 110.0, 7.0, base=0.0),
+            # A shed on the west pier: it hides a small boat behind the pier from the ownship's
+            # lidar about 3 m above the water (the "tunnel" of thesis scenario 9).
+            Box("west_pier_shed", 41.0, 51.0, -72.0, -34.0, 4.5, base=1.2),
         )
     )
     moored_boats: tuple[MooredBoat, ...] = field(

@@ -1,0 +1,115 @@
+"""Depth-buffer lidar cost next to the exact ray-cast lidar, in one process.
+
+Same world and sweeps as ``benchmarks/lidar.py`` (default harbour, milliAmpere carrying a
+VLP-16, Havfruen and Finn moving). Three range models run through the same lidar pipeline:
+
+* ``raycast`` — the baseline: each beam cast exactly;
+* ``depthbuffer`` — the spherical projection filter (Table 4.1's lidar, N_c = 8,
+  N_c,h = 3104, 2^24 depth levels): the pixel-centre ray of each beam cast, quantised
+  (4.8–4.9) and back-projected (4.37–4.42);
+* ``depthbuffer-legacy`` — the Gemini regular grid (no filter).
+
+Reported: beams/s of whole sweeps (every beam of the sweep counted, as in the lidar
+benchmark) at the thesis's 80 % ray drop and with no drop, and the range model alone on
+pre-posed batches (ranged beams/s). The last line is JSON.
+
+    .venv/bin/python benchmarks/depthbuffer.py [--sweeps 30] [--repeats 3]
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import json
+import os
+import platform
+import time
+from pathlib import Path
+
+import numpy as np
+
+
+def _lidar_bench_build():  # noqa: ANN202 - the lidar benchmark's scenario, not copied
+    spec = importlib.util.spec_from_file_location("_lidar_bench", Path(__file__).with_name("lidar.py"))
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)  # type: ignore[union-attr]
+    return mod.build
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--sweeps", type=int, default=30, help="sweeps per timed run")
+    ap.add_argument("--repeats", type=int, default=3, help="timed runs; the best is reported")
+    args = ap.parse_args()
+
+    from seatwin.engine.embree import default_threads
+    from seatwin.sensors.depthbuffer.lidar_range import legacy_range_model
+    from seatwin.sensors.depthbuffer.lidar_range import range_model as db_model
+    from seatwin.sensors.lidar import lidar_for_scenario, sweep_starts
+    from seatwin.sensors.rangemodel import raycast_ranges
+    from seatwin.world.scene import Scene
+
+    sc = _lidar_bench_build()()
+    scene = Scene.from_scenario(sc)
+    lidar = lidar_for_scenario(sc, scene)
+    cfg = lidar.config
+    starts = sweep_starts(sc, cfg)[: args.sweeps]
+    models = {"raycast": raycast_ranges, "depthbuffer": db_model, "depthbuffer-legacy": legacy_range_model}
+
+    def pipeline(model, config) -> float:  # noqa: ANN001
+        lidar._model, lidar.config = model, config  # noqa: SLF001 - same Lidar, same posing and drop
+        t0 = time.perf_counter()
+        for k, s in enumerate(starts):
+            lidar.sweep(s, k)
+        return time.perf_counter() - t0
+
+    no_drop = cfg.with_(drop_probability=0.0)
+    lidar.config = no_drop
+    batches = [lidar.beams(s, k) for k, s in enumerate(starts)]
+    lidar.config = cfg
+
+    def ranging(model) -> float:  # noqa: ANN001
+        t0 = time.perf_counter()
+        for b in batches:
+            model(scene, b)
+        return time.perf_counter() - t0
+
+    for m in models.values():  # warm-up (builds the filter cache and the vessel casters)
+        pipeline(m, cfg)
+        ranging(m)
+    best: dict[str, dict[str, float]] = {name: {"sweep": np.inf, "sweep0": np.inf, "range": np.inf} for name in models}
+    for _ in range(args.repeats):
+        for name, m in models.items():
+            best[name]["sweep"] = min(best[name]["sweep"], pipeline(m, cfg))
+            best[name]["sweep0"] = min(best[name]["sweep0"], pipeline(m, no_drop))
+            best[name]["range"] = min(best[name]["range"], ranging(m))
+    lidar.config = cfg
+    beams = len(starts) * cfg.beams
+    ranged = sum(len(b) for b in batches)
+    out: dict[str, object] = {
+        "benchmark": "depthbuffer",
+        "preset": cfg.name,
+        "sweeps": len(starts),
+        "beams_per_sweep": cfg.beams,
+        "drop_probability": cfg.drop_probability,
+        "threads": default_threads(),
+        "cpu_count": os.cpu_count(),
+        "python": platform.python_version(),
+    }
+    for name in models:
+        key = name.replace("-", "_")
+        out[f"{key}_beams_per_s"] = round(beams / best[name]["sweep"])
+        out[f"{key}_beams_per_s_no_drop"] = round(beams / best[name]["sweep0"])
+        out[f"{key}_range_model_beams_per_s"] = round(ranged / best[name]["range"])
+    for name in ("depthbuffer", "depthbuffer-legacy"):
+        key = name.replace("-", "_")
+        out[f"{key}_cost_vs_raycast"] = round(best[name]["sweep"] / best["raycast"]["sweep"], 2)
+        out[f"{key}_cost_vs_raycast_no_drop"] = round(best[name]["sweep0"] / best["raycast"]["sweep0"], 2)
+    for name, b in best.items():
+        print(f"{name:20s} sweep {1e3 * b['sweep'] / len(starts):7.2f} ms  no drop {1e3 * b['sweep0'] / len(starts):7.2f} ms  "
+              f"range model alone {ranged / b['range'] / 1e6:6.2f} Mbeams/s")
+    print(json.dumps(out))
+
+
+if __name__ == "__main__":
+    main()

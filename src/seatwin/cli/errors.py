@@ -1,0 +1,60 @@
+"""``seatwin errors``: the numerical error of depth buffers, Table 4.1 of the thesis recomputed."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+_HELP = (
+    "Recompute the thesis's Table 4.1 (depth-buffer parameters, maximum numerical error ε_max by "
+    "4.32 and video memory B by 4.35) for the RGB camera and the lidar.\n\n"
+    "Rows 'rgb' and 'lidar' use the table's printed parameters; further rows (lidar_eq417, "
+    "lidar_nc4, lidar_eq436) follow consistently from the equations 4.14–4.17 and 4.36. Each row "
+    "lists what does not add up (conditions 4.33, aspect ratio 4.3, differences to the print) "
+    "under 'warnings'."
+)
+
+
+def _format_table(rows: list[dict]) -> str:
+    head = f"{'sensor':<12}{'VFOV_c°':>8}{'HFOV_c°':>8}{'N_c':>4}{'N_ch':>6}{'N_cw':>6}{'N_cd':>6}{'n':>6}{'f':>7}{'ε_max [m]':>11}{'B [bytes]':>11}"
+    lines = [head, "-" * len(head)]
+    for r in rows:
+        lines.append(
+            f"{r['sensor']:<12}{r['vfov_c_deg']:>8.2f}{r['hfov_c_deg']:>8.2f}{r['n_c']:>4}{r['n_ch']:>6}{r['n_cw']:>6}"
+            f"{'2^' + str(int(r['n_cd']).bit_length() - 1):>6}{r['near']:>6g}{r['far']:>7g}{r['eps_max']:>11.4g}{r['bytes']:>11.3g}"
+        )
+    for r in rows:
+        for w in r["warnings"]:
+            lines.append(f"! {r['sensor']}: {w}")
+    return "\n".join(lines)
+
+
+def register(app: typer.Typer) -> None:
+    @app.command("errors", help=_HELP)
+    def errors_cmd(
+        as_json: bool = typer.Option(False, "--json", help='Print {"rows": [...]} as JSON instead of a table.'),
+        plots: Optional[Path] = typer.Option(
+            None, "--plots", metavar="DIR", help="Also write Fig. 4.6 (filter mask), 4.8, 4.12 and 4.13 as PNG files into DIR."
+        ),
+    ) -> None:
+        import json
+
+        from seatwin.errors import InputError
+        from seatwin.sensors.depthbuffer.table import table_json
+
+        if plots is not None and plots.exists() and not plots.is_dir():
+            raise InputError(plots, "exists and is not a folder (--plots expects a folder for the PNG files)", where="--plots")
+        data = table_json()
+        if plots is not None:
+            from seatwin.sensors.depthbuffer.plots import write_error_plots
+
+            try:
+                written = write_error_plots(plots)
+            except OSError as exc:
+                raise InputError(plots, f"cannot write the figures: {exc.strerror or exc}", where="--plots") from exc
+            if not as_json:
+                for p in written:
+                    typer.echo(f"wrote {p}", err=True)
+        typer.echo(json.dumps(data, indent=2, ensure_ascii=False) if as_json else _format_table(data["rows"]))
