@@ -1,0 +1,82 @@
+"""``seatwin evaluate``: a tracker run against ground truth (thesis 5.1.4)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+_HELP = (
+    "Evaluate a track file against ground truth (thesis 5.1.4).\n\n"
+    "Each track subscribes to the closest ground truth within --gate metres; per target the "
+    "closest subscribed track is the target, and an instant without one is a track loss. Per "
+    "target: coverage, first/last associated time, track switches and losses, RMSE (5.25), ANEES "
+    "(5.27) of NEES (5.26) over the valid instants with its χ² bounds (5.28). Ground-truth "
+    "velocities come from numerical differentiation of the positions."
+)
+
+
+def _fmt(value: object, spec: str = ".3f") -> str:
+    return "-" if value is None else format(value, spec) if isinstance(value, float) else str(value)
+
+
+def _clock(t: float | None) -> str:
+    import datetime as dt
+
+    if t is None:
+        return "-"
+    return dt.datetime.fromtimestamp(t, dt.timezone.utc).strftime("%H:%M:%S.%f")[:-4]
+
+
+def check_overlap(tracks, truth, source: str) -> None:  # noqa: ANN001
+    """An :class:`InputError` when no tracker instant falls inside any ground truth's time span."""
+    from seatwin.errors import InputError
+
+    if not len(tracks.scan_times) or not len(truth):
+        return
+    t0, t1 = float(tracks.scan_times[0]), float(tracks.scan_times[-1])
+    spans = [(tr.start, tr.end) for tr in truth.targets.values()]
+    if all(t1 < a or t0 > b for a, b in spans):
+        a = min(s[0] for s in spans)
+        b = max(s[1] for s in spans)
+        raise InputError(source, f"the tracks span [{t0!r}, {t1!r}] s but the ground truth spans [{a!r}, {b!r}] s: "
+                                 "no common time (same clock? same scenario?)")
+
+
+def register(app: typer.Typer) -> None:
+    @app.command("evaluate", help=_HELP)
+    def evaluate_cmd(
+        tracks: Path = typer.Argument(..., metavar="TRACKS.csv", help="Track file (time,track_id,existence,north,v_north,east,v_east,P00…P33,confirmed)."),
+        truth: str = typer.Option(..., "--truth", metavar="SCENARIO_OR_RECORDING", help="Ground truth: a scenario (built-in name, .yaml or Gemini .csv) or a recording; the ownship is excluded."),
+        json_out: Optional[Path] = typer.Option(None, "--json", metavar="OUT.json", help="Write the per-target metrics as JSON here."),
+        gate: float = typer.Option(10.0, "--gate", metavar="M", help="Track-to-truth association distance (m); the thesis uses 10."),
+        all_tracks: bool = typer.Option(False, "--all-tracks", help="Also associate unconfirmed (tentative) tracks."),
+        confidence: float = typer.Option(0.95, "--confidence", metavar="P", help="Confidence of the two-sided ANEES bounds (5.28)."),
+    ) -> None:
+        import json
+
+        from seatwin.errors import InputError
+        from seatwin.evaluation import evaluate, load_truth, read_tracks
+
+        if not gate > 0:
+            raise InputError("--gate", f"must be positive, got {gate}")
+        if not 0 < confidence < 1:
+            raise InputError("--confidence", f"must lie in (0, 1), got {confidence}")
+        run = read_tracks(tracks)
+        truth_set = load_truth(truth)
+        check_overlap(run, truth_set, str(tracks))
+        result = evaluate(run, truth_set, gate=gate, confirmed_only=not all_tracks, confidence=confidence)
+        typer.echo(f"{'target':<12} {'coverage':>8} {'first (UTC)':>14} {'last (UTC)':>14} {'switch':>6} {'RMSE':>8} {'RMSEpos':>8} "
+                   f"{'ANEES':>9} {'bounds':>15}  verdict")
+        for s in result.summaries:
+            bounds = "-" if s.anees_lower is None else f"[{s.anees_lower:.3f},{s.anees_upper:.3f}]"
+            typer.echo(f"{s.target:<12} {_fmt(s.coverage):>8} {_clock(s.first_time):>14} {_clock(s.last_time):>14} "
+                       f"{s.track_switches:>6} {_fmt(s.rmse):>8} {_fmt(s.rmse_position):>8} {_fmt(s.anees):>9} {bounds:>15}  "
+                       f"{s.anees_verdict}")
+        if json_out is not None:
+            data = {"tracks": str(tracks), "truth": str(truth), "confirmed_only": not all_tracks,
+                    "confidence": confidence, **result.to_dict()}
+            json_out.parent.mkdir(parents=True, exist_ok=True)
+            json_out.write_text(json.dumps(data, indent=2) + "\n")
+            typer.echo(f"wrote {json_out}")
