@@ -1,0 +1,41 @@
+"""Euclidean clustering (DBSCAN with min_samples = 1, i.e. single linkage cut at ``eps``).
+
+Pairs closer than ``eps`` come from a k-d tree (``scipy.spatial.cKDTree.query_pairs``); the
+clusters are the connected components of that graph (``scipy.sparse.csgraph``). Clusters with
+fewer than ``min_points`` points are dropped as noise. Cost O(N log N) for N points.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
+
+
+def cluster_labels(points: NDArray[np.float64], eps: float, min_points: int = 1) -> NDArray[np.int64]:
+    """Cluster label of each point (0, 1, …), −1 for points in clusters smaller than ``min_points``."""
+    n = points.shape[0]
+    if n == 0:
+        return np.zeros(0, dtype=np.int64)
+    pairs = cKDTree(points).query_pairs(eps, output_type="ndarray")
+    graph = coo_matrix((np.ones(len(pairs), dtype=np.int8), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    _, labels = connected_components(graph, directed=False)
+    counts = np.bincount(labels)
+    keep = counts >= min_points
+    remap = np.full(counts.size, -1, dtype=np.int64)
+    remap[keep] = np.arange(int(keep.sum()))
+    return remap[labels]
+
+
+def cluster_centroids(points: NDArray[np.float64], eps: float, min_points: int = 1) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+    """Centroids (K, dim) of the clusters and their point counts (K,)."""
+    labels = cluster_labels(points, eps, min_points)
+    ok = labels >= 0
+    if not ok.any():
+        return np.zeros((0, points.shape[1])), np.zeros(0, dtype=np.int64)
+    k = int(labels.max()) + 1
+    counts = np.bincount(labels[ok], minlength=k)
+    sums = np.stack([np.bincount(labels[ok], weights=points[ok, d], minlength=k) for d in range(points.shape[1])], axis=1)
+    return sums / counts[:, None], counts

@@ -1,0 +1,94 @@
+"""Sensor poses in the world: ownship pose (north, east, heading) ∘ sensor mount (body frame).
+
+A mount is the pose of the sensor frame in the vessel body frame (x forward, y starboard,
+z down), as recorded on /tf_static: translation [m] and quaternion (x, y, z, w). The ownship
+pose has only a heading (roll and pitch are not in the ground truth), so body → world is a
+rotation about the down axis.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+Array = NDArray[np.float64]
+
+
+def quaternion_matrix(q: ArrayLike) -> Array:
+    """Rotation matrix of a unit quaternion (x, y, z, w)."""
+    x, y, z, w = np.asarray(q, dtype=float) / np.linalg.norm(q)
+    return np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+        ]
+    )
+
+
+def yaw_matrix(heading: float) -> Array:
+    """Body FRD → world NED for a vessel with ``heading`` (rad, clockwise from north)."""
+    c, s = np.cos(heading), np.sin(heading)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+FLU_TO_FRD = np.diag([1.0, -1.0, -1.0])
+"""A REP-103 sensor frame (x forward, y left, z up) mounted straight ahead, seen in the body FRD frame."""
+
+
+@dataclass(frozen=True)
+class Mount:
+    """Pose of a sensor in the body frame: ``p_body = rotation @ p_sensor + translation``."""
+
+    translation: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    rotation: Array = field(default_factory=FLU_TO_FRD.copy)
+
+    @classmethod
+    def from_quaternion(cls, translation: ArrayLike, q: ArrayLike) -> Mount:
+        return cls(tuple(float(v) for v in np.asarray(translation, float)), quaternion_matrix(q))
+
+
+@dataclass(frozen=True)
+class SensorPose:
+    """Where a sensor is in the world at one time: ``p_world = rotation @ p_sensor + position``."""
+
+    position: Array
+    """(3,) north, east, down of the sensor origin."""
+    rotation: Array
+    """(3, 3) sensor frame → world NED."""
+    body_rotation: Array
+    """(3, 3) body → world (the ownship heading)."""
+    ownship_position: Array
+    """(3,) the ownship reference point."""
+
+    @property
+    def north(self) -> float:
+        return float(self.position[0])
+
+    @property
+    def east(self) -> float:
+        return float(self.position[1])
+
+    def to_world(self, points: Array) -> Array:
+        """(N, 3) sensor-frame points → world NED."""
+        return points @ self.rotation.T + self.position
+
+    def to_body(self, world: Array) -> Array:
+        """(N, 3) world points → the ownship body frame (about its reference point)."""
+        return (world - self.ownship_position) @ self.body_rotation
+
+    @property
+    def boresight_bearing(self) -> float:
+        """World bearing of the sensor's x axis (clockwise from north)."""
+        fwd = self.rotation[:, 0]
+        return float(np.arctan2(fwd[1], fwd[0]))
+
+
+def sensor_pose(north: float, east: float, heading: float, mount: Mount | None = None, down: float = 0.0) -> SensorPose:
+    """The sensor pose for an ownship at (north, east, down) with ``heading`` and a sensor ``mount``."""
+    mount = mount or Mount()
+    Rb = yaw_matrix(heading)
+    own = np.array([north, east, down], dtype=float)
+    return SensorPose(own + Rb @ np.asarray(mount.translation, float), Rb @ mount.rotation, Rb, own)

@@ -1,0 +1,285 @@
+"""The JIPDA multi-target tracker with extended Kalman filters (thesis ch. 5.1.3, Algorithm 2).
+
+Per scan: predict every track (constant velocity, existence × P_S), gate (eq. 5.23), solve
+the joint association exactly per cluster (:mod:`.association`), update each track with
+the probability-weighted mixture of its EKF corrections (moment-matched to one Gaussian),
+update existence, confirm/terminate by thresholds, then start tracks from pairs of
+unassociated measurements of the same sensor within ``d = v_max·ΔT`` (thesis 5.1.3).
+
+All tracks live in stacked arrays (``x`` (T, 4), ``P`` (T, 4, 4), ``r`` (T,)) so that each
+step is a handful of vectorised numpy operations whatever the number of tracks.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from seatwin.perception.measurements import MeasurementKind, Scan, polar_to_cartesian
+from seatwin.tracking import ekf
+from seatwin.tracking.association import existence_posterior, gate_threshold, jipda_marginals
+from seatwin.tracking.config import SensorTuning, TrackerConfig
+from seatwin.tracking.models import cv_process_noise, cv_transition, model_for_scan
+
+Array = NDArray[np.float64]
+
+COLUMNS = (
+    ["time", "track_id", "existence", "north", "v_north", "east", "v_east"]
+    + [f"P{i}{j}" for i in range(4) for j in range(4)]
+    + ["confirmed"]
+)
+"""Columns of the track table (one row per time and live track)."""
+
+_LOG_2PI = math.log(2.0 * math.pi)
+
+
+@dataclass
+class TrackTable:
+    """Track estimates, one row per (scan time, live track)."""
+
+    time: Array
+    track_id: NDArray[np.int64]
+    existence: Array
+    x: Array
+    """(N, 4) north, v_north, east, v_east."""
+    P: Array
+    """(N, 4, 4)."""
+    confirmed: NDArray[np.bool_]
+
+    def __len__(self) -> int:
+        return int(self.time.shape[0])
+
+    def matrix(self) -> Array:
+        """(N, 24) in :data:`COLUMNS` order (``confirmed`` as 0/1)."""
+        return np.column_stack(
+            (self.time, self.track_id, self.existence, self.x, self.P.reshape(-1, 16), self.confirmed.astype(float))
+        )
+
+    @classmethod
+    def concatenate(cls, parts: list[TrackTable]) -> TrackTable:
+        if not parts:
+            return cls(np.zeros(0), np.zeros(0, np.int64), np.zeros(0), np.zeros((0, 4)), np.zeros((0, 4, 4)), np.zeros(0, bool))
+        return cls(*(np.concatenate([getattr(p, f) for p in parts]) for f in ("time", "track_id", "existence", "x", "P", "confirmed")))
+
+
+def _position_covariance(scan: Scan, z: Array, tuning: SensorTuning) -> Array:
+    """(M, 2, 2) north/east covariance of positional measurements (polar noise mapped by its Jacobian)."""
+    M = z.shape[0]
+    if scan.kind is MeasurementKind.CARTESIAN:
+        return np.repeat((np.eye(2) * tuning.r_cartesian)[None], M, axis=0)
+    r, b = z[:, 0], z[:, 1]
+    c, s = np.cos(b), np.sin(b)
+    J = np.empty((M, 2, 2))
+    J[:, 0, 0], J[:, 0, 1], J[:, 1, 0], J[:, 1, 1] = c, -r * s, s, r * c
+    return J @ np.diag([tuning.r_range, tuning.r_bearing]) @ np.swapaxes(J, 1, 2)
+
+
+class JIPDATracker:
+    """Multi-target JIPDA tracker; feed it :class:`Scan` objects in time order with :meth:`step`."""
+
+    def __init__(self, config: TrackerConfig):
+        self.config = config
+        self.x = np.zeros((0, 4))
+        self.P = np.zeros((0, 4, 4))
+        self.r = np.zeros(0)
+        self.ids = np.zeros(0, dtype=np.int64)
+        self.confirmed = np.zeros(0, dtype=bool)
+        self.time: float | None = None
+        self._next_id = 1
+        # Unassociated positional measurements of each sensor's previous scan: (time, pos, cov).
+        self._pending: dict[str, tuple[float, Array, Array]] = {}
+        self._gates: dict[int, tuple[float, float]] = {}
+        self._excl: dict[int, float] = {}
+        self._R_cache: dict[tuple[str, str], Array] = {}
+        self._FQ: tuple[float, Array, Array] | None = None
+
+    # -- helpers ---------------------------------------------------------------------------
+    def _gate(self, dim: int) -> tuple[float, float]:
+        if dim not in self._gates:
+            c = self.config
+            self._gates[dim] = gate_threshold(dim, g=c.gate_g, probability=c.gate_probability)
+            self._excl[dim] = max(self._gates[dim][0], gate_threshold(dim, probability=c.init_exclusion_probability)[0])
+        return self._gates[dim]
+
+    def _R(self, scan: Scan, tuning: SensorTuning) -> Array:
+        key = (scan.sensor, scan.kind.value)
+        R = self._R_cache.get(key)
+        if R is None:
+            if scan.kind is MeasurementKind.RANGE_BEARING:
+                R = np.diag([tuning.r_range, tuning.r_bearing])
+            elif scan.kind is MeasurementKind.BEARING:
+                R = np.array([[tuning.r_bearing]])
+            else:
+                R = np.eye(2) * tuning.r_cartesian
+            self._R_cache[key] = R
+        return R
+
+    def _predict(self, t: float) -> None:
+        if self.time is None:
+            self.time = t
+            return
+        dt = t - self.time
+        if dt < 0:
+            raise ValueError(f"scans must come in time order: {t} after {self.time}")
+        if dt > 0 and self.r.size:
+            c = self.config
+            if self._FQ is None or self._FQ[0] != dt:
+                self._FQ = (dt, cv_transition(dt), cv_process_noise(dt, c.q_north, c.q_east))
+            self.x, self.P = ekf.predict(self.x, self.P, self._FQ[1], self._FQ[2])
+            self.r = self.r * c.survival_per_second**dt
+        self.time = t
+
+    # -- one scan -------------------------------------------------------------------------
+    def step(self, scan: Scan) -> TrackTable:
+        """Process one scan; return the estimates of all live tracks at the scan time."""
+        c = self.config
+        tuning = c.sensor(scan.sensor)
+        self._predict(scan.time)
+        z = scan.z
+        if tuning.bearing_bias and scan.kind is not MeasurementKind.CARTESIAN and z.shape[0]:
+            z = z.copy()
+            ai = 1 if scan.kind is MeasurementKind.RANGE_BEARING else 0
+            z[:, ai] -= tuning.bearing_bias
+        R = self._R(scan, tuning)
+        dim = scan.kind.dim
+        g2, pg = self._gate(dim)
+        pd_pg = tuning.p_detect * pg
+        T, M = self.r.size, z.shape[0]
+        associated = np.zeros(M, dtype=bool)
+        if T:
+            model = model_for_scan(scan, R)
+            if M:
+                associated = self._update(model, z, R, g2, pd_pg, tuning)
+            else:
+                self.r = existence_posterior(self.r, np.ones(T), pd_pg)[0]
+            self._manage()
+        if scan.kind is not MeasurementKind.BEARING:
+            self._initiate(scan, z[~associated], tuning)
+        return self.snapshot()
+
+    def _update(self, model, z: Array, R: Array, g2: float, pd_pg: float, tuning: SensorTuning) -> NDArray[np.bool_]:
+        x, P, r = self.x, self.P, self.r
+        zhat, H = model.predict(x)
+        S = ekf.innovation_covariance(P, H, R)
+        S_inv = ekf.inverse_small(S)
+        v = model.residual(z, zhat)  # (T, M, d)
+        d2 = ekf.mahalanobis2(v, S_inv)
+        gated = d2 < g2
+        excl = self._excl[z.shape[1]]
+        associated = gated.any(axis=0) if excl == g2 else (d2 < excl).any(axis=0)
+        if not gated.any():
+            self.r = existence_posterior(r, np.ones(r.size), pd_pg)[0]
+            return associated
+        log_norm = -0.5 * (ekf.log_det_small(S) + z.shape[1] * _LOG_2PI)
+        lam = model.clutter_density(z, tuning.clutter_density)
+        with np.errstate(under="ignore"):
+            L = np.where(gated, tuning.p_detect * np.exp(log_norm[:, None] - 0.5 * d2) / lam[None, :], 0.0)
+        beta0, beta = jipda_marginals(r, L, gated, pd_pg, self.config.max_hypotheses)
+        r_post, w0 = existence_posterior(r, beta0, pd_pg)
+        # Mixture of the EKF corrections, conditional on existence.
+        W = ekf.gain(P, H, S_inv)  # (T, 4, d)
+        xj = x[:, None, :] + v @ np.swapaxes(W, 1, 2)  # (T, M, 4)
+        wj = beta / np.where(r_post > 0, r_post, 1.0)[:, None]
+        x_new = w0[:, None] * x + (wj[:, None, :] @ xj)[:, 0, :]
+        P_upd = ekf.update_covariance(P, W, H)
+        dx0 = x - x_new
+        dxj = xj - x_new[:, None, :]
+        P_new = (
+            w0[:, None, None] * (P + dx0[:, :, None] * dx0[:, None, :])
+            + (1.0 - w0)[:, None, None] * P_upd
+            + np.swapaxes(dxj * wj[:, :, None], 1, 2) @ dxj
+        )
+        self.x = x_new
+        self.P = 0.5 * (P_new + np.swapaxes(P_new, 1, 2))
+        self.r = r_post
+        return associated
+
+    def _manage(self) -> None:
+        c = self.config
+        self.confirmed |= self.r >= c.confirm_threshold
+        keep = self.r >= c.terminate_threshold
+        if not keep.all():
+            self.x, self.P, self.r, self.ids, self.confirmed = (
+                self.x[keep], self.P[keep], self.r[keep], self.ids[keep], self.confirmed[keep]
+            )
+
+    def _initiate(self, scan: Scan, z: Array, tuning: SensorTuning) -> None:
+        """Two-point initiation from unassociated measurements within d = v_max·ΔT (+ margin)."""
+        pos = polar_or_cartesian(scan, z)
+        cov = _position_covariance(scan, z, tuning) if z.shape[0] else np.zeros((0, 2, 2))
+        prev = self._pending.get(scan.sensor)
+        unused = np.ones(pos.shape[0], dtype=bool)
+        if prev is not None and pos.shape[0] and prev[1].shape[0]:
+            t0, pos0, cov0 = prev
+            dt = scan.time - t0
+            if dt > 0:
+                d_max = self.config.v_max * dt + self.config.init_margin
+                dist = np.hypot(pos[:, None, 0] - pos0[None, :, 0], pos[:, None, 1] - pos0[None, :, 1])
+                pairs = np.argwhere(dist <= d_max)
+                if pairs.size:
+                    order = np.argsort(dist[pairs[:, 0], pairs[:, 1]], kind="stable")
+                    used0 = np.zeros(pos0.shape[0], dtype=bool)
+                    new_i, new_k = [], []
+                    for i, k in pairs[order]:
+                        if unused[i] and not used0[k]:
+                            unused[i] = False
+                            used0[k] = True
+                            new_i.append(i)
+                            new_k.append(k)
+                    self._add_tracks(pos[new_i], cov[new_i], pos0[new_k], cov0[new_k], dt)
+        self._pending[scan.sensor] = (scan.time, pos[unused], cov[unused])
+
+    def _add_tracks(self, p1: Array, c1: Array, p0: Array, c0: Array, dt: float) -> None:
+        n = p1.shape[0]
+        if not n:
+            return
+        vel = (p1 - p0) / dt
+        x = np.column_stack((p1[:, 0], vel[:, 0], p1[:, 1], vel[:, 1]))
+        P = np.zeros((n, 4, 4))
+        pos_i, vel_i = [0, 2], [1, 3]
+        P[np.ix_(range(n), pos_i, pos_i)] = c1
+        P[np.ix_(range(n), vel_i, vel_i)] = (c1 + c0) / dt**2
+        P[np.ix_(range(n), pos_i, vel_i)] = c1 / dt
+        P[np.ix_(range(n), vel_i, pos_i)] = c1 / dt
+        self.x = np.concatenate((self.x, x))
+        self.P = np.concatenate((self.P, P))
+        self.r = np.concatenate((self.r, np.full(n, self.config.initial_existence)))
+        self.ids = np.concatenate((self.ids, np.arange(self._next_id, self._next_id + n)))
+        self.confirmed = np.concatenate((self.confirmed, np.zeros(n, dtype=bool)))
+        self._next_id += n
+
+    def snapshot(self) -> TrackTable:
+        """The live tracks now."""
+        n = self.r.size
+        return TrackTable(
+            np.full(n, self.time if self.time is not None else np.nan),
+            self.ids.copy(),
+            self.r.copy(),
+            self.x.copy(),
+            self.P.copy(),
+            self.confirmed.copy(),
+        )
+
+    def run(self, scans: Iterable[Scan]) -> TrackTable:
+        """Process all scans; the concatenated track table."""
+        return TrackTable.concatenate([self.step(s) for s in scans])
+
+    def iterate(self, scans: Iterable[Scan]) -> Iterator[TrackTable]:
+        for s in scans:
+            yield self.step(s)
+
+
+def polar_or_cartesian(scan: Scan, z: Array) -> Array:
+    """North/east positions of positional measurements ``z`` of ``scan``'s kind."""
+    if scan.kind is MeasurementKind.CARTESIAN:
+        return z.reshape(-1, 2).copy()
+    return polar_to_cartesian(z, (scan.sensor_north, scan.sensor_east))
+
+
+def track(scans: Iterable[Scan], config: TrackerConfig) -> TrackTable:
+    """Run a fresh tracker over ``scans``."""
+    return JIPDATracker(config).run(scans)
