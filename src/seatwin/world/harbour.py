@@ -1,0 +1,174 @@
+"""Static harbour geometry: from a :class:`~seatwin.world.layout.HarbourLayout` or a land/water raster.
+
+Water is the plane z = 0 and is *not* a mesh: a ray that reaches it returns nothing (calm
+water reflects the laser away), which the sensors model by cutting rays at the surface.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import trimesh
+import yaml
+
+from seatwin.errors import InputError
+from seatwin.world.layout import DEFAULT_LAYOUT, HarbourLayout
+from seatwin.world.objects import WorldObject
+from seatwin.world.shapes import block, merge, yaw_matrix
+from seatwin.world.vessels import REFLECTIVITY, generic
+
+QUAY_BASE = -2.0
+"""Quays and land reach this far below the water (hidden; keeps the quay faces closed)."""
+
+
+def harbour_from_layout(layout: HarbourLayout = DEFAULT_LAYOUT) -> list[WorldObject]:
+    """Quays on both sides of the channel, piers, buildings and moored boats of ``layout``."""
+    w, d = layout.half_width, layout.land_depth
+    n0, n1 = layout.north_min, layout.north_max
+    objs = [
+        WorldObject("quay_west", "quay", block(n0, n1, -w - d, -w, layout.quay_height, QUAY_BASE), REFLECTIVITY["quay"]),
+        WorldObject("quay_east", "quay", block(n0, n1, w, w + d, layout.quay_height, QUAY_BASE), REFLECTIVITY["quay"]),
+    ]
+    for p in layout.piers:
+        objs.append(WorldObject(p.name, "pier", block(p.north_min, p.north_max, p.east_min, p.east_max, p.top, p.base), REFLECTIVITY["pier"]))
+    for b in layout.buildings:
+        # Buildings stand on the quay: start them at its top so no face hides inside it.
+        base = max(b.base, 0.0)
+        objs.append(WorldObject(b.name, "building", block(b.north_min, b.north_max, b.east_min, b.east_max, b.top, base), REFLECTIVITY["building"]))
+    for m in layout.moored_boats:
+        boat = generic(m.length, m.beam, m.height, name=m.name).mesh.copy()
+        boat.vertices = boat.vertices @ yaw_matrix(np.radians(m.heading_deg)).T + [m.north, m.east, 0.0]
+        objs.append(WorldObject(m.name, "moored_boat", boat, REFLECTIVITY["moored_boat"]))
+    return objs
+
+
+@dataclass(frozen=True)
+class LandRaster:
+    """A land/water grid: ``water[r, c]`` True on water; cell (r, c) covers
+    north ``origin_north + r·res`` … ``+res`` and east ``origin_east + c·res`` … ``+res``."""
+
+    water: np.ndarray
+    origin_north: float
+    origin_east: float
+    resolution: float = 1.0
+    source: str = "<memory>"
+
+    def is_water(self, north: np.ndarray, east: np.ndarray) -> np.ndarray:
+        """True where (north, east) falls on a water cell (outside the grid counts as water)."""
+        r = np.floor((np.asarray(north) - self.origin_north) / self.resolution).astype(int)
+        c = np.floor((np.asarray(east) - self.origin_east) / self.resolution).astype(int)
+        inside = (r >= 0) & (r < self.water.shape[0]) & (c >= 0) & (c < self.water.shape[1])
+        out = np.ones(np.broadcast(r, c).shape, dtype=bool)
+        out[inside] = self.water[r[inside], c[inside]]
+        return out
+
+
+def read_land_raster(path: str | Path) -> LandRaster:
+    """Read a ``.bin`` + ``.yaml`` land/water raster (uint8 rows from the south, 1 = water, 0 = land).
+
+    ``path`` is either file; the other is found beside it.
+    """
+    p = Path(path)
+    meta_path, bin_path = p.with_suffix(".yaml"), p.with_suffix(".bin")
+    for q in (meta_path, bin_path):
+        if not q.is_file():
+            raise InputError(q, "raster file not found (a land raster is a .bin with a .yaml beside it)")
+    try:
+        meta = yaml.safe_load(meta_path.read_text())
+    except yaml.YAMLError as exc:
+        raise InputError(meta_path, f"not valid YAML: {exc}") from exc
+    need = ("map_width", "map_height", "origin_x_coordinate", "origin_y_coordinate")
+    for key in need:
+        if not isinstance(meta, dict) or key not in meta:
+            raise InputError(meta_path, f"missing key {key!r} (expected {', '.join(need)}, grid_resolution)", where=key)
+    w, h = int(meta["map_width"]), int(meta["map_height"])
+    res = float(meta.get("grid_resolution", 1.0))
+    data = np.fromfile(bin_path, dtype=np.uint8)
+    if data.size != w * h:
+        raise InputError(bin_path, f"holds {data.size} bytes, expected map_width × map_height = {w} × {h} = {w * h}")
+    bad = np.flatnonzero(data > 1)
+    if bad.size:
+        raise InputError(bin_path, f"cell values must be 0 (land) or 1 (water), got {data[bad[0]]}", where=f"byte {bad[0]}")
+    return LandRaster(
+        data.reshape(h, w).astype(bool),
+        origin_north=float(meta["origin_y_coordinate"]),
+        origin_east=float(meta["origin_x_coordinate"]),
+        resolution=res,
+        source=str(bin_path),
+    )
+
+
+def merge_cells(mask: np.ndarray) -> list[tuple[int, int, int, int]]:
+    """Cover the True cells of ``mask`` with rectangles ``(r0, r1, c0, c1)`` (end-exclusive).
+
+    Each row is cut into runs; a run identical to one in the row before extends that
+    rectangle. Exact cover, far fewer pieces than cells.
+    """
+    open_rects: dict[tuple[int, int], int] = {}  # (c0, c1) -> start row
+    out: list[tuple[int, int, int, int]] = []
+    rows, cols = mask.shape
+    padded = np.zeros(cols + 2, dtype=np.int8)
+    for r in range(rows + 1):
+        runs: set[tuple[int, int]] = set()
+        if r < rows:
+            padded[1:-1] = mask[r]
+            edges = np.flatnonzero(np.diff(padded))
+            runs = {(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2])}
+        for key in [k for k in open_rects if k not in runs]:
+            out.append((open_rects.pop(key), r, key[0], key[1]))
+        for key in runs:
+            open_rects.setdefault(key, r)
+    return out
+
+
+def _boxes(raster: LandRaster, mask: np.ndarray, top: float, base: float) -> trimesh.Trimesh | None:
+    rects = merge_cells(mask)
+    if not rects:
+        return None
+    res = raster.resolution
+    parts = [
+        block(raster.origin_north + r0 * res, raster.origin_north + r1 * res, raster.origin_east + c0 * res, raster.origin_east + c1 * res, top, base)
+        for r0, r1, c0, c1 in rects
+    ]
+    return merge(parts)
+
+
+def harbour_from_raster(
+    raster: LandRaster,
+    quay_height: float = DEFAULT_LAYOUT.quay_height,
+    building_setback: float | None = None,
+    building_height: float = 10.0,
+) -> list[WorldObject]:
+    """Land cells extruded to ``quay_height``; with ``building_setback``, land at least that far
+    from the water is raised further to ``building_height`` (a crude city block)."""
+    land = ~raster.water
+    objs: list[WorldObject] = []
+    quay = _boxes(raster, land, quay_height, QUAY_BASE)
+    if quay is not None:
+        objs.append(WorldObject("land", "quay", quay, REFLECTIVITY["quay"]))
+    if building_setback is not None:
+        from scipy.ndimage import distance_transform_edt
+
+        dist = distance_transform_edt(land) * raster.resolution
+        blocks = _boxes(raster, land & (dist >= building_setback), building_height, quay_height)
+        if blocks is not None:
+            objs.append(WorldObject("buildings", "building", blocks, REFLECTIVITY["building"]))
+    return objs
+
+
+def build_harbour(spec: object = "default") -> list[WorldObject]:
+    """Harbour objects for a scenario's ``environment['harbour']``: ``"default"``, ``"none"``,
+    a :class:`HarbourLayout`, a :class:`LandRaster`, or a raster path (``.bin``/``.yaml``)."""
+    if isinstance(spec, HarbourLayout):
+        return harbour_from_layout(spec)
+    if isinstance(spec, LandRaster):
+        return harbour_from_raster(spec)
+    if spec is None or (isinstance(spec, str) and spec.lower() in ("none", "open", "open_water")):
+        return []
+    if isinstance(spec, str) and spec.lower() == "default":
+        return harbour_from_layout(DEFAULT_LAYOUT)
+    if isinstance(spec, (str, Path)) and Path(spec).suffix.lower() in (".bin", ".yaml", ".yml"):
+        return harbour_from_raster(read_land_raster(spec))
+    raise InputError(None, f"unknown harbour {spec!r}; expected 'default', 'none' or a land raster .bin/.yaml path", where="environment.harbour")
