@@ -27,6 +27,7 @@ deb:
 	else echo "not root: make sure these Debian packages are installed: $(DEB_PACKAGES)"; fi
 
 demo: $(STAMP)
+	rm -rf runs/demo
 	$(VENV)/bin/seatwin demo --out runs/demo
 
 test: $(STAMP)

@@ -26,6 +26,19 @@ app = typer.Typer(
 # Each module has ``register(app)``; keep their imports light (heavy imports inside commands)
 # so that ``seatwin --help`` stays fast.
 COMMAND_MODULES: list[str] = [
+    "bag",
+    "groundtruth",
+    "scenario",
+    "evaluate",
+    "compare",
+    "track",
+    "importers",
+    "errors",
+    "lidar",
+    "simulate",
+    "radar",
+    "fidelity",
+    "demo",
 ]
 
 
@@ -73,3 +86,7 @@ def run(argv: Sequence[str] | None = None) -> int:
 
 def main() -> None:
     sys.exit(run())
+
+
+if __name__ == "__main__":
+    main()

@@ -239,14 +239,30 @@ class Lidar:
             rng, oid, nrm = self._merge_self_returns(batch, g, rng, oid, nrm)
         keep = np.flatnonzero((oid >= 0) & (rng >= np.float32(cfg.min_range)))
         bounds = np.searchsorted(g[keep], np.arange(len(starts) + 1) * n)
+        dirs = self._sampled_directions(res, batch)
         out = []
         for j, (start, frame) in enumerate(zip(starts, frames)):
-            out.append(self._pack(float(start), frame, keep[bounds[j] : bounds[j + 1]], batch, rng, oid, nrm))
+            out.append(self._pack(float(start), frame, keep[bounds[j] : bounds[j + 1]], batch, rng, oid, nrm, dirs))
         return out
+
+    @staticmethod
+    def _sampled_directions(res: BeamRanges, batch: BeamBatch) -> NDArray[np.float32] | None:
+        """Per-beam sensor-frame directions of the points when the range model samples other
+        rays than the beams (the depth buffer's pixel rays: their direction error is part of
+        its error); None when points lie along the beams."""
+        pts = getattr(res, "sensor_points", None)
+        if pts is None or not len(pts):
+            return None
+        norm = np.linalg.norm(pts, axis=1, keepdims=True)
+        ok = np.isfinite(norm[:, 0]) & (norm[:, 0] > 0)
+        dirs = batch.sensor_directions.copy()
+        dirs[ok] = (pts[ok] / norm[ok]).astype(np.float32)
+        return dirs
 
     def _pack(
         self, start: float, frame: int, keep: NDArray[np.intp], batch: BeamBatch,
         rng: NDArray[np.float32], oid: NDArray[np.int32], nrm: NDArray[np.float32],
+        dirs: NDArray[np.float32] | None = None,
     ) -> LidarSweep:
         """Dissipation, noise, intensity and the points of one sweep (``keep``: its valid returns)."""
         cfg = self.config
@@ -260,7 +276,7 @@ class Lidar:
         ids = oid[keep]
         cos = cos_incidence(nrm[keep], batch.directions[keep])
         inten = intensity(self.scene.reflectivity[ids], cos, r, cfg.intensity)
-        ds = self.d_sensor[sel]
+        ds = self.d_sensor[sel] if dirs is None else dirs[keep]
         return LidarSweep(
             stamp=start,
             frame=int(frame),

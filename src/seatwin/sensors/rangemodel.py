@@ -86,7 +86,8 @@ class BeamRanges:
 RangeModel = Callable[[Scene, BeamBatch], BeamRanges]
 
 _MODELS: dict[str, RangeModel] = {}
-_LAZY = {"depthbuffer": "seatwin.sensors.depthbuffer"}
+_LAZY = {"depthbuffer": ("seatwin.sensors.depthbuffer", "range_model"),
+         "depthbuffer-legacy": ("seatwin.sensors.depthbuffer", "legacy_range_model")}
 
 
 def register_range_model(name: str, model: RangeModel) -> None:
@@ -102,8 +103,8 @@ def get_range_model(name: str) -> RangeModel:
     """The range model called ``name`` (``raycast``, ``depthbuffer`` or a registered one)."""
     if name not in _MODELS and name in _LAZY:
         try:
-            module = importlib.import_module(_LAZY[name])
-            _MODELS[name] = module.range_model
+            module_name, attr = _LAZY[name]
+            _MODELS[name] = getattr(importlib.import_module(module_name), attr)
         except (ImportError, AttributeError) as exc:
             raise InputError(None, f"range model {name!r} is not available: {exc}", where="range_model") from exc
     if name not in _MODELS:

@@ -1,0 +1,27 @@
+"""``seatwin bag``: inspect recordings (ours and real ROS 1 / rosbag2 SQLite3 / MCAP bags)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+
+def register(app: typer.Typer) -> None:
+    bag_app = typer.Typer(help="Inspect recordings: ROS 1 .bag, rosbag2 (SQLite3, MCAP) and seatwin run directories.",
+                          no_args_is_help=True)
+    app.add_typer(bag_app, name="bag")
+
+    @bag_app.command("info")
+    def info(
+        path: Path = typer.Argument(..., help="A run directory, a rosbag2 directory, or a .mcap, .db3 or .bag file."),
+        fast: bool = typer.Option(False, "--fast", help="Skip the scan for per-topic rates (rate = (count - 1) / bag duration)."),
+        as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
+    ) -> None:
+        """Format, duration, start and end, completeness, and every topic with its type, count and rate."""
+        import json
+
+        from seatwin.recording.info import bag_info, format_info
+
+        data = bag_info(path, scan=not fast)
+        typer.echo(json.dumps(data, indent=2) if as_json else format_info(data))

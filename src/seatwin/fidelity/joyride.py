@@ -1,0 +1,150 @@
+"""The joyride dataset and its synthetic replica.
+
+``joyride.mat`` (MATLAB v5): ``time`` (n×1 POSIX s), ``measurements`` (n×1 cell of m×2
+``[north, east]`` plots; rows with inf are invalid), ``target`` and ``telemetron`` (n×4
+``[north, v_north, east, v_east]``). The replica: the ownship (Telemetron, carrying the
+radar) and the target boat posed from that ground truth in open water (no harbour), the
+radar model scanned at the recorded scan times.
+
+**No heading in the data.** Both vessels' headings are taken from their velocity
+(``atan2(v_east, v_north)``), held at the last value while slower than ``MIN_SPEED`` — a
+planing boat points roughly where it goes, but drift and crabbing are not modelled. The
+ownship heading only rotates the radar's spokes (plots land in the same place), the
+target's heading sets its aspect and so its visible width and detection probability.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from seatwin.errors import InputError
+
+MIN_SPEED = 0.5
+"""m/s: below it a vessel keeps its previous heading."""
+TARGET_SIZE = (8.0, 2.8, 2.0)
+"""Length, beam, height [m] of the target box: the dataset does not say; a typical small
+leisure motor boat / RIB of the kind used in the joyride experiments (assumption)."""
+OWNSHIP = "telemetron"
+TARGET = "target"
+
+
+@dataclass
+class JoyrideData:
+    """The dataset: scan times, real plots, ground truth of target and ownship."""
+
+    time: NDArray[np.float64]
+    plots: list[NDArray[np.float64]]
+    target: NDArray[np.float64]
+    """(n, 4) ``[north, v_north, east, v_east]``."""
+    ownship: NDArray[np.float64]
+    source: str = "<memory>"
+    n_invalid: int = 0
+    """Plot rows dropped because they held inf/NaN."""
+
+    def __len__(self) -> int:
+        return int(self.time.shape[0])
+
+
+def load_joyride(path: str | Path) -> JoyrideData:
+    """Read ``joyride.mat`` with :func:`seatwin.perception.datasets.read_joyride` (invalid rows dropped, counted)."""
+    from seatwin.perception.datasets import read_joyride
+
+    ds = read_joyride(path)
+    for key, arr in (("target", ds.targets["target"]), ("telemetron", ds.sensor)):
+        if not np.isfinite(arr).all():
+            raise InputError(path, f"non-finite value in row {int(np.flatnonzero(~np.isfinite(arr).all(1))[0])}", where=key)
+    return JoyrideData(ds.time, ds.plots, ds.targets["target"], ds.sensor, str(path), _count_invalid(path, ds.plots))
+
+
+def _count_invalid(path: str | Path, kept: list[NDArray[np.float64]]) -> int:
+    """Plot rows the reader dropped as invalid (inf/NaN)."""
+    import scipy.io
+
+    cells = np.asarray(scipy.io.loadmat(Path(path), variable_names=["measurements"])["measurements"], dtype=object).reshape(-1)
+    return int(sum(np.asarray(c).reshape(-1, 2).shape[0] if np.asarray(c).size else 0 for c in cells) - sum(len(k) for k in kept))
+
+
+def heading_from_velocity(v_north: NDArray[np.float64], v_east: NDArray[np.float64], min_speed: float = MIN_SPEED) -> NDArray[np.float64]:
+    """Course over ground [rad], held while slower than ``min_speed`` (0 until the first fast sample)."""
+    h = np.arctan2(v_east, v_north)
+    fast = np.hypot(v_north, v_east) >= min_speed
+    if not fast.any():
+        return np.zeros_like(h)
+    idx = np.where(fast, np.arange(len(h)), -1)
+    idx = np.maximum.accumulate(idx)
+    idx[idx < 0] = int(np.flatnonzero(fast)[0])
+    return h[idx]
+
+
+def replica_scenario(data: JoyrideData, target_size: tuple[float, float, float] = TARGET_SIZE):  # noqa: ANN201
+    """A :class:`seatwin.scenario.Scenario` of the two boats (headings from velocity)."""
+    from seatwin.scenario.model import Dimensions, Role, Scenario, Trajectory, Vessel
+
+    def traj(x: NDArray[np.float64]) -> Trajectory:
+        return Trajectory(data.time, x[:, 0], x[:, 2], heading_from_velocity(x[:, 1], x[:, 3]), source=data.source)
+
+    own = Vessel(OWNSHIP, Role.OWNSHIP, traj(data.ownship), model="generic", dimensions=Dimensions(10.0, 3.0, 2.5))
+    tgt = Vessel(TARGET, Role.TARGET, traj(data.target), model="generic", dimensions=Dimensions(*target_size))
+    return Scenario("joyride-replica", [own, tgt], environment={"harbour": "none", "water": "flat"}, rig=None, source=data.source)
+
+
+def replica_scene(data: JoyrideData, target_size: tuple[float, float, float] = TARGET_SIZE):  # noqa: ANN201
+    """The scene: no static world, the two vessels with generic hulls of their sizes."""
+    from seatwin.world.scene import Scene
+    from seatwin.world.vessels import vessel_model
+
+    sc = replica_scenario(data, target_size)
+    vessels = {v.name: (vessel_model(v.model, v.dimensions, sc.source), v.trajectory) for v in sc.vessels}
+    return Scene([], vessels)
+
+
+def simulate_replica(data: JoyrideData, model, scene=None, indices=None) -> list:  # noqa: ANN001
+    """The radar model's scans at the dataset's scan times (frame index = scan index)."""
+    from seatwin.sensors.radar.world import scan_scene
+
+    scene = scene or replica_scene(data)
+    idx = range(len(data)) if indices is None else indices
+    return [scan_scene(model, scene, OWNSHIP, int(k), float(data.time[k])) for k in idx]
+
+
+def target_visible_area(data: JoyrideData, config, scene=None) -> NDArray[np.float64]:  # noqa: ANN001
+    """The target's visible area [m²] seen by the radar at each scan (from the replica's geometry; NaN if unseen)."""
+    from seatwin.sensors.radar.geometry import illuminate
+    from seatwin.sensors.radar.model import RadarModel
+    from seatwin.sensors.radar.world import SceneCaster, antenna_pose
+
+    scene = scene or replica_scene(data)
+    model = RadarModel(config)
+    tid = scene.vessel_ids[TARGET]
+    out = np.full(len(data), np.nan)
+    for k, t in enumerate(data.time):
+        objs = illuminate(config, antenna_pose(model, scene, OWNSHIP, float(t)), SceneCaster(scene, float(t), (OWNSHIP,)))
+        for o in objs:
+            if o.object_id == tid:
+                out[k] = o.area_m2
+    return out
+
+
+def observations(data: JoyrideData, config=None, scene=None):  # noqa: ANN001, ANN201
+    """The dataset as :class:`seatwin.sensors.radar.fit.RadarObservations` (target area from the replica)."""
+    from seatwin.sensors.radar.config import RadarConfig
+    from seatwin.sensors.radar.fit import RadarObservations
+
+    config = config or RadarConfig()
+    area = target_visible_area(data, config, scene)
+    area = np.where(np.isfinite(area), area, np.nanmedian(area) if np.isfinite(area).any() else TARGET_SIZE[0] * TARGET_SIZE[2])
+    return RadarObservations(
+        data.time, data.plots, data.ownship[:, [0, 2]] + _mount(config, data), data.target[:, [0, 2]], area, data.source
+    )
+
+
+def _mount(config, data: JoyrideData) -> NDArray[np.float64]:  # noqa: ANN001
+    h = heading_from_velocity(data.ownship[:, 1], data.ownship[:, 3])
+    return np.column_stack([
+        config.mount_x_m * np.cos(h) - config.mount_y_m * np.sin(h),
+        config.mount_x_m * np.sin(h) + config.mount_y_m * np.cos(h),
+    ])

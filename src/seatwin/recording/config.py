@@ -1,0 +1,88 @@
+"""Recording configuration: bag formats, topic-name templates and frame ids (all configurable).
+
+Templates use ``{sensor}`` and ``{vessel}``; names are sanitised to valid ROS names
+(letters, digits, ``_`` and ``/``; a token never starts with a digit).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import asdict, dataclass, fields
+from typing import Any, Literal
+
+from seatwin.errors import InputError
+
+BagFormat = Literal["mcap", "sqlite3", "ros1"]
+FORMATS: tuple[str, ...] = ("mcap", "sqlite3", "ros1")
+
+_BAD = re.compile(r"[^A-Za-z0-9_/]")
+
+
+def ros_name(name: str) -> str:
+    """``name`` as a valid ROS graph/frame name: bad characters → ``_``, digit-led tokens → ``_`` prefix."""
+    clean = _BAD.sub("_", name.strip())
+    tokens = [("_" + t if t[:1].isdigit() else t) for t in clean.split("/")]
+    out = "/".join(tokens)
+    return out or "_"
+
+
+@dataclass(frozen=True)
+class TopicConfig:
+    """Topic templates and frame ids of a recording. Defaults are the ones listed in the README."""
+
+    lidar: str = "/{sensor}/points"
+    camera: str = "/{sensor}/image_raw"
+    camera_compressed: str = "/{sensor}/image_raw/compressed"
+    radar: str = "/{sensor}/detections"
+    pose: str = "/ground_truth/{vessel}/pose"
+    odom: str = "/ground_truth/{vessel}/odom"
+    fix: str = "/ground_truth/{vessel}/fix"
+    tf: str = "/tf"
+    tf_static: str = "/tf_static"
+    world_frame: str = "world_ned"
+    """Frame of all ground truth: the scenario's local NED frame (REP-103 ``_ned`` suffix)."""
+    display_frame: str | None = "world"
+    """ENU parent of ``world_frame`` on /tf_static, so RViz/Foxglove show the scene upright (None: omit)."""
+    body_frame: str = "{vessel}/base_link_frd"
+    """Vessel body frame (x forward, y starboard, z down) on /tf."""
+
+    def topic(self, kind: str, *, sensor: str | None = None, vessel: str | None = None) -> str:
+        """The topic name of ``kind`` (a field name) for a sensor or a vessel."""
+        template = getattr(self, kind)
+        name = template.format(sensor=ros_name(sensor or ""), vessel=ros_name(vessel or ""))
+        return "/" + ros_name(name.lstrip("/")) if name.startswith("/") else ros_name(name)
+
+    def body(self, vessel: str) -> str:
+        return ros_name(self.body_frame.format(vessel=ros_name(vessel)))
+
+    def vessel_from_topic(self, kind: str, topic: str) -> str | None:
+        """Invert a ``{vessel}`` template: the vessel name in ``topic``, or None when it does not match."""
+        template = getattr(self, kind)
+        if "{vessel}" not in template:
+            return None
+        head, tail = template.split("{vessel}", 1)
+        m = re.fullmatch(re.escape(head) + r"(.+?)" + re.escape(tail), topic)
+        return m.group(1) if m else None
+
+    def to_dict(self) -> dict[str, Any]:
+        return asdict(self)
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any] | None, source: str = "topics") -> TopicConfig:
+        """Build from a mapping (e.g. a YAML ``topics:`` section); unknown keys are an :class:`InputError`."""
+        data = dict(data or {})
+        known = {f.name for f in fields(cls)}
+        unknown = sorted(set(data) - known)
+        if unknown:
+            raise InputError(source, f"unknown topic setting(s) {unknown}; expected some of {sorted(known)}")
+        for key, value in data.items():
+            if not (isinstance(value, str) or (key == "display_frame" and value is None)):
+                raise InputError(source, f"expected a string, got {value!r}", where=key)
+        return cls(**data)
+
+
+def check_format(fmt: str, source: str = "--format") -> BagFormat:
+    """Validate a bag format name."""
+    if fmt not in FORMATS:
+        raise InputError(source, f"unknown bag format {fmt!r}; expected one of {', '.join(FORMATS)}")
+    return fmt  # type: ignore[return-value]

@@ -1,0 +1,53 @@
+"""The run manifest (``manifest.json`` beside the bag): what was recorded and whether the run completed.
+
+Written when the recording opens (``completed: false``), refreshed at every flush and rewritten
+with ``completed: true`` on a clean close. Each write goes to a temporary file that is renamed, so
+the manifest is never half-written; a run killed before its first flush may have none — both
+mean *incomplete*.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+from typing import Any
+
+from seatwin.errors import InputError
+
+MANIFEST_NAME = "manifest.json"
+MANIFEST_VERSION = 1
+
+
+def write_manifest(run_dir: Path, data: dict[str, Any]) -> None:
+    """Atomically write ``run_dir/manifest.json``."""
+    path = Path(run_dir) / MANIFEST_NAME
+    tmp = path.with_name(path.name + ".part")
+    tmp.write_text(json.dumps(data, indent=2, sort_keys=False, default=_default) + "\n", encoding="utf8")
+    os.replace(tmp, path)
+
+
+def read_manifest(run_dir: Path) -> dict[str, Any] | None:
+    """The manifest of a run directory, or None when there is none."""
+    path = Path(run_dir) / MANIFEST_NAME
+    if not path.is_file():
+        return None
+    try:
+        data = json.loads(path.read_text(encoding="utf8"))
+    except (OSError, ValueError) as exc:
+        raise InputError(path, f"not a readable JSON manifest: {exc}") from None
+    if not isinstance(data, dict):
+        raise InputError(path, "expected a JSON object")
+    return data
+
+
+def _default(obj: Any) -> Any:
+    if hasattr(obj, "tolist"):
+        return obj.tolist()
+    if isinstance(obj, Path):
+        return str(obj)
+    if hasattr(obj, "__dataclass_fields__"):
+        from dataclasses import asdict
+
+        return asdict(obj)
+    return str(obj)

@@ -1,0 +1,258 @@
+"""ROS message builders over a rosbags typestore (ROS 2 Humble for rosbag2, ROS 1 Noetic for .bag).
+
+Frames: ground truth is in the world frame (local NED); a vessel pose is its body frame
+(x forward, y starboard, z down) in NED, so its orientation is the heading ψ about z (down):
+q = (x 0, y 0, z sin ψ/2, w cos ψ/2). Odometry twists are in the body frame (ROS convention:
+twist in ``child_frame_id``).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+from rosbags.typesys import Stores, get_typestore
+from rosbags.typesys.store import Typestore
+
+from seatwin.geo import GeodeticOrigin, ned_to_llh_exact
+from seatwin.recording.pointcloud import Layout
+
+_STORES: dict[str, Typestore] = {}
+
+
+def typestore(fmt: str) -> Typestore:
+    """The typestore for a bag format: ROS 1 Noetic for ``ros1``, ROS 2 Humble otherwise."""
+    key = "ros1" if fmt == "ros1" else "ros2"
+    if key not in _STORES:
+        store = get_typestore(Stores.ROS1_NOETIC if key == "ros1" else Stores.ROS2_HUMBLE)
+        if "tf2_msgs/msg/TFMessage" not in store.types:  # rosbags' Noetic store lacks tf2_msgs
+            from rosbags.typesys import get_types_from_msg
+
+            store.register(get_types_from_msg("geometry_msgs/TransformStamped[] transforms", "tf2_msgs/msg/TFMessage"))
+        _STORES[key] = store
+    return _STORES[key]
+
+
+def split_stamp(t: float) -> tuple[int, int]:
+    """POSIX seconds → (sec, nanosec) with 0 ≤ nanosec < 1e9."""
+    sec = math.floor(t)
+    nsec = round((t - sec) * 1e9)
+    if nsec >= 1_000_000_000:
+        sec, nsec = sec + 1, nsec - 1_000_000_000
+    return int(sec), int(nsec)
+
+
+def stamp_ns(t: float) -> int:
+    """POSIX seconds → integer nanoseconds (the bag's log time)."""
+    sec, nsec = split_stamp(t)
+    return sec * 1_000_000_000 + nsec
+
+
+def ns_to_s(ns: int) -> float:
+    return ns // 1_000_000_000 + (ns % 1_000_000_000) * 1e-9
+
+
+def header(store: Typestore, t: float, frame_id: str) -> Any:
+    T = store.types
+    sec, nsec = split_stamp(t)
+    stamp = T["builtin_interfaces/msg/Time"](sec=sec, nanosec=nsec)
+    H = T["std_msgs/msg/Header"]
+    if "seq" in H.__dataclass_fields__:
+        return H(seq=0, stamp=stamp, frame_id=frame_id)
+    return H(stamp=stamp, frame_id=frame_id)
+
+
+def quaternion_yaw(yaw: float) -> tuple[float, float, float, float]:
+    """(x, y, z, w) of a rotation by ``yaw`` about the frame's z axis."""
+    return 0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0)
+
+
+def quaternion_from_matrix(r: NDArray[np.float64]) -> tuple[float, float, float, float]:
+    """(x, y, z, w) of a rotation matrix (w ≥ 0)."""
+    from scipy.spatial.transform import Rotation
+
+    x, y, z, w = Rotation.from_matrix(np.asarray(r, float)).as_quat()
+    if w < 0:
+        x, y, z, w = -x, -y, -z, -w
+    return float(x), float(y), float(z), float(w)
+
+
+R_ENU_NED = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
+"""Maps NED coordinates to ENU: the rotation of the ``world_ned`` frame in the ``world`` (ENU) frame."""
+
+_BASES = {
+    "flu": np.diag([1.0, -1.0, -1.0]),  # REP-103 sensor frame (x fwd, y left, z up) → body FRD
+    "frd": np.eye(3),
+    "optical": np.array([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]),  # z fwd, x right, y down
+}
+
+
+def mount_rotation(convention: str = "flu", roll: float = 0.0, pitch: float = 0.0, yaw: float = 0.0) -> tuple[float, float, float, float]:
+    """Quaternion (x, y, z, w) of a sensor frame in the vessel body frame (FRD).
+
+    The sensor is first turned by yaw (to starboard), pitch (nose up), roll (starboard down) —
+    Z-Y-X Euler angles in the body FRD frame — and its axes follow ``convention``: ``flu``
+    (REP-103 lidar/radar: x forward, y left, z up), ``optical`` (camera: z forward, x right,
+    y down) or ``frd``.
+    """
+    from scipy.spatial.transform import Rotation
+
+    if convention not in _BASES:
+        raise ValueError(f"unknown frame convention {convention!r}; expected one of {sorted(_BASES)}")
+    r = Rotation.from_euler("ZYX", [yaw, pitch, roll]).as_matrix() @ _BASES[convention]
+    return quaternion_from_matrix(r)
+
+
+@dataclass(frozen=True)
+class StaticTransform:
+    """A fixed transform: the pose of ``child`` in ``parent`` (translation [m], quaternion x, y, z, w)."""
+
+    parent: str
+    child: str
+    translation: tuple[float, float, float]
+    rotation: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
+
+
+def transform_stamped(store: Typestore, t: float, parent: str, child: str,
+                      translation: Sequence[float], rotation: Sequence[float]) -> Any:
+    T = store.types
+    return T["geometry_msgs/msg/TransformStamped"](
+        header=header(store, t, parent),
+        child_frame_id=child,
+        transform=T["geometry_msgs/msg/Transform"](
+            translation=T["geometry_msgs/msg/Vector3"](x=float(translation[0]), y=float(translation[1]), z=float(translation[2])),
+            rotation=_quat(store, rotation),
+        ),
+    )
+
+
+def tf_message(store: Typestore, transforms: Sequence[Any]) -> Any:
+    return store.types["tf2_msgs/msg/TFMessage"](transforms=list(transforms))
+
+
+def _quat(store: Typestore, q: Sequence[float]) -> Any:
+    return store.types["geometry_msgs/msg/Quaternion"](x=float(q[0]), y=float(q[1]), z=float(q[2]), w=float(q[3]))
+
+
+def _point(store: Typestore, p: Sequence[float]) -> Any:
+    return store.types["geometry_msgs/msg/Point"](x=float(p[0]), y=float(p[1]), z=float(p[2]))
+
+
+def _vec(store: Typestore, v: Sequence[float]) -> Any:
+    return store.types["geometry_msgs/msg/Vector3"](x=float(v[0]), y=float(v[1]), z=float(v[2]))
+
+
+def point_cloud2(store: Typestore, t: float, frame_id: str, layout: Layout, data: NDArray[np.uint8],
+                 *, is_dense: bool = True, row_step_zero: bool = False) -> Any:
+    """A PointCloud2 of ``layout`` (height 1, little endian). ``row_step_zero`` reproduces the thesis bags."""
+    T = store.types
+    PF = T["sensor_msgs/msg/PointField"]
+    width = data.size // layout.point_step
+    return T["sensor_msgs/msg/PointCloud2"](
+        header=header(store, t, frame_id),
+        height=1,
+        width=width,
+        fields=[PF(name=f.name, offset=f.offset, datatype=f.datatype, count=f.count) for f in layout.fields],
+        is_bigendian=False,
+        point_step=layout.point_step,
+        row_step=0 if row_step_zero else layout.point_step * width,
+        data=data,
+        is_dense=is_dense,
+    )
+
+
+IMAGE_CHANNELS = {"bgr8": 3, "rgb8": 3, "mono8": 1}
+
+
+def image(store: Typestore, t: float, frame_id: str, pixels: NDArray[np.uint8], encoding: str = "bgr8") -> Any:
+    """A ``sensor_msgs/Image`` (bgr8 as in the thesis, rgb8 or mono8) from an H×W(×C) uint8 array."""
+    if encoding not in IMAGE_CHANNELS:
+        raise ValueError(f"unsupported encoding {encoding!r}; expected one of {sorted(IMAGE_CHANNELS)}")
+    a = np.ascontiguousarray(pixels, dtype=np.uint8)
+    c = IMAGE_CHANNELS[encoding]
+    if a.ndim == 2 and c == 1:
+        a = a[:, :, None]
+    if a.ndim != 3 or a.shape[2] != c:
+        raise ValueError(f"{encoding} needs an H×W×{c} array, got shape {pixels.shape}")
+    h, w = a.shape[:2]
+    return store.types["sensor_msgs/msg/Image"](
+        header=header(store, t, frame_id), height=h, width=w, encoding=encoding, is_bigendian=0,
+        step=w * c, data=a.reshape(-1),
+    )
+
+
+def compressed_image(store: Typestore, t: float, frame_id: str, payload: bytes, fmt: str) -> Any:
+    """A ``sensor_msgs/CompressedImage`` (``fmt`` e.g. ``jpeg`` or ``png``) from encoded bytes."""
+    return store.types["sensor_msgs/msg/CompressedImage"](
+        header=header(store, t, frame_id), format=fmt, data=np.frombuffer(payload, dtype=np.uint8),
+    )
+
+
+@dataclass(frozen=True)
+class VesselPose:
+    """Ground truth of one vessel at one time, in the world NED frame (SI units, radians)."""
+
+    name: str
+    north: float
+    east: float
+    heading: float
+    """Radians clockwise from north."""
+    down: float = 0.0
+    v_north: float = 0.0
+    v_east: float = 0.0
+    yaw_rate: float = 0.0
+    """rad/s, positive clockwise seen from above."""
+    ownship: bool = False
+
+
+def pose_stamped(store: Typestore, t: float, world_frame: str, v: VesselPose) -> Any:
+    T = store.types
+    return T["geometry_msgs/msg/PoseStamped"](
+        header=header(store, t, world_frame),
+        pose=T["geometry_msgs/msg/Pose"](position=_point(store, (v.north, v.east, v.down)),
+                                         orientation=_quat(store, quaternion_yaw(v.heading))),
+    )
+
+
+def body_velocity(v: VesselPose) -> tuple[float, float]:
+    """(surge, sway): the NED velocity in the body frame (x forward, y starboard)."""
+    c, s = math.cos(v.heading), math.sin(v.heading)
+    return c * v.v_north + s * v.v_east, -s * v.v_north + c * v.v_east
+
+
+def odometry(store: Typestore, t: float, world_frame: str, body_frame: str, v: VesselPose) -> Any:
+    """``nav_msgs/Odometry``: pose in the world NED frame, twist in the body FRD frame; zero covariances."""
+    T = store.types
+    zeros = np.zeros(36, dtype=np.float64)
+    u, w = body_velocity(v)
+    return T["nav_msgs/msg/Odometry"](
+        header=header(store, t, world_frame),
+        child_frame_id=body_frame,
+        pose=T["geometry_msgs/msg/PoseWithCovariance"](
+            pose=T["geometry_msgs/msg/Pose"](position=_point(store, (v.north, v.east, v.down)),
+                                             orientation=_quat(store, quaternion_yaw(v.heading))),
+            covariance=zeros,
+        ),
+        twist=T["geometry_msgs/msg/TwistWithCovariance"](
+            twist=T["geometry_msgs/msg/Twist"](linear=_vec(store, (u, w, 0.0)), angular=_vec(store, (0.0, 0.0, v.yaw_rate))),
+            covariance=zeros.copy(),
+        ),
+    )
+
+
+def nav_sat_fix(store: Typestore, t: float, frame_id: str, v: VesselPose, origin: GeodeticOrigin) -> Any:
+    """``sensor_msgs/NavSatFix`` of the vessel's reference point (exact NED → WGS-84 LLH)."""
+    T = store.types
+    lat, lon, alt = ned_to_llh_exact(v.north, v.east, v.down, origin)
+    NSS = T["sensor_msgs/msg/NavSatStatus"]
+    return T["sensor_msgs/msg/NavSatFix"](
+        header=header(store, t, frame_id),
+        status=NSS(status=NSS.STATUS_FIX, service=NSS.SERVICE_GPS),
+        latitude=float(lat), longitude=float(lon), altitude=float(alt),
+        position_covariance=np.zeros(9, dtype=np.float64),
+        position_covariance_type=T["sensor_msgs/msg/NavSatFix"].COVARIANCE_TYPE_UNKNOWN,
+    )

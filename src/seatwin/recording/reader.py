@@ -1,0 +1,427 @@
+"""Read recordings: ours (a run directory) and real ones (ROS 1 ``.bag``, rosbag2 SQLite3 or MCAP).
+
+``open_recording_reader(path)`` accepts a run directory (with ``manifest.json``), a rosbag2
+directory, or a ``.mcap`` / ``.db3`` / ``.bag`` file, and gives typed iterators: point clouds of
+any field layout as numpy structured arrays, images (bgr8, rgb8, mono8, CompressedImage), radar
+plots, /tf_static, and ground truth from our topics or from a scenario file beside the bag.
+Bags cut short (SIGKILL, full disk) are read up to their last complete chunk.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from seatwin.errors import InputError
+from seatwin.recording import backends as B
+from seatwin.recording.config import TopicConfig, ros_name
+from seatwin.recording.images import decode_compressed, image_to_array
+from seatwin.recording.manifest import read_manifest
+from seatwin.recording.messages import StaticTransform
+from seatwin.recording.pointcloud import unpack
+
+POINTCLOUD2 = "sensor_msgs/msg/PointCloud2"
+IMAGE = "sensor_msgs/msg/Image"
+COMPRESSED_IMAGE = "sensor_msgs/msg/CompressedImage"
+ODOMETRY = "nav_msgs/msg/Odometry"
+POSE_STAMPED = "geometry_msgs/msg/PoseStamped"
+TF = "tf2_msgs/msg/TFMessage"
+
+
+def stamp_s(stamp: Any) -> float:
+    """A ``builtin_interfaces/Time`` as float POSIX seconds."""
+    return float(stamp.sec) + float(stamp.nanosec) * 1e-9
+
+
+@dataclass
+class Message:
+    topic: str
+    msgtype: str
+    log_time_ns: int
+    msg: Any
+
+
+@dataclass
+class PointCloud:
+    """One PointCloud2: ``points`` is a flat structured array with the message's own field names."""
+
+    topic: str
+    stamp: float
+    frame_id: str
+    points: NDArray[Any]
+    height: int
+    width: int
+    is_dense: bool
+    log_time_ns: int
+
+    def xyz(self) -> NDArray[np.float64]:
+        """N×3 float64 of x, y, z (non-finite points dropped)."""
+        p = np.stack([np.asarray(self.points[k], float) for k in ("x", "y", "z")], axis=1)
+        return p[np.isfinite(p).all(axis=1)]
+
+
+@dataclass
+class ImageFrame:
+    """One image: ``pixels`` H×W×C uint8 in ``encoding`` order (bgr8, rgb8 or mono8)."""
+
+    topic: str
+    stamp: float
+    frame_id: str
+    pixels: NDArray[np.uint8]
+    encoding: str
+    compressed_format: str | None
+    log_time_ns: int
+
+
+@dataclass
+class VesselTruth:
+    """Ground truth of one vessel over time, world NED frame, SI units; heading clockwise from north."""
+
+    name: str
+    time: NDArray[np.float64]
+    north: NDArray[np.float64]
+    east: NDArray[np.float64]
+    down: NDArray[np.float64]
+    heading: NDArray[np.float64]
+    v_north: NDArray[np.float64]
+    v_east: NDArray[np.float64]
+    yaw_rate: NDArray[np.float64]
+    ownship: bool = False
+    source: str = ""
+
+    def to_trajectory(self) -> Any:
+        from seatwin.scenario import Trajectory
+
+        return Trajectory(self.time, self.north, self.east, self.heading, source=self.source)
+
+
+def _find_bag(path: Path) -> tuple[Path, str, Path | None]:
+    """(bag path, format, run dir or None) for any accepted path."""
+    if not path.exists():
+        raise InputError(path, "no such file or directory")
+    if path.is_file():
+        fmt = {".bag": "ros1", ".mcap": "mcap", ".db3": "sqlite3"}.get(path.suffix)
+        if fmt is None:
+            raise InputError(path, "not a bag: expected a .bag, .mcap or .db3 file, a rosbag2 directory or a run directory")
+        run = path.parent if (path.parent / "manifest.json").exists() else None
+        if run is None and (path.parent.parent / "manifest.json").exists():
+            run = path.parent.parent
+        return path, fmt, run
+    manifest = read_manifest(path)
+    if manifest is not None:
+        bag = path / str(manifest.get("bag", ""))
+        if not manifest.get("bag") or not bag.exists():
+            raise InputError(path / "manifest.json", f"the bag {manifest.get('bag')!r} it names is missing", where="bag")
+        found, fmt, _ = _find_bag(bag)
+        return found, fmt, path
+    storage = sorted(path.glob("*.mcap")) + sorted(path.glob("*.db3"))
+    if (path / "metadata.yaml").exists() or storage:
+        parent = read_manifest(path.parent) if (path.parent / "manifest.json").exists() else None
+        run = path.parent if parent is not None and parent.get("bag") == path.name else None
+        return path, _rosbag2_dir_format(path), run
+    bags = sorted(path.glob("*.bag"))
+    if len(bags) == 1:
+        return bags[0], "ros1", None
+    subdirs = [d for d in sorted(path.iterdir()) if d.is_dir() and ((d / "metadata.yaml").exists() or any(d.glob("*.mcap")) or any(d.glob("*.db3")))]
+    if len(subdirs) == 1:
+        return subdirs[0], _rosbag2_dir_format(subdirs[0]), None
+    raise InputError(path, "no bag found here (expected manifest.json, metadata.yaml, *.mcap, *.db3 or one *.bag)")
+
+
+def _rosbag2_dir_format(path: Path) -> str:
+    if any(path.glob("*.mcap")):
+        return "mcap"
+    if any(path.glob("*.db3")):
+        return "sqlite3"
+    meta = path / "metadata.yaml"
+    text = meta.read_text(errors="replace") if meta.exists() else ""
+    m = re.search(r"storage_identifier:\s*(\w+)", text)
+    return m.group(1) if m else "unknown"
+
+
+def _open_backend(bag: Path, fmt: str) -> B.Backend:
+    from rosbags.rosbag1 import ReaderError as Reader1Error
+    from rosbags.rosbag2 import ReaderError as Reader2Error
+
+    errors = (Reader1Error, Reader2Error, KeyError, ValueError, AssertionError)
+    if fmt == "ros1":
+        try:
+            return B.RosbagsBackend(bag, "ros1")
+        except errors:
+            return B.Ros1ScanBackend(bag)
+    if fmt not in ("mcap", "sqlite3"):
+        raise InputError(bag, f"unsupported rosbag2 storage {fmt!r}; expected mcap or sqlite3")
+    storage = [bag] if bag.is_file() else sorted(bag.glob("*.mcap" if fmt == "mcap" else "*.db3"))
+    if fmt == "sqlite3":
+        journaled = any(B.rollback_sqlite_journal(db) for db in storage)
+    else:
+        journaled = False
+    if bag.is_dir() and (bag / "metadata.yaml").exists() and not journaled:
+        try:
+            return B.RosbagsBackend(bag, fmt)
+        except errors:
+            pass
+    if not storage:
+        raise InputError(bag, f"rosbag2 directory without {fmt} storage files")
+    if len(storage) > 1:
+        raise InputError(bag, "a split rosbag2 without metadata.yaml cannot be recovered (several storage files)")
+    try:
+        backend = B.RosbagsBackend(storage[0], fmt)
+        backend.recovered = bag.is_dir() or journaled
+        return backend
+    except errors as exc:
+        if fmt == "mcap":
+            return B.McapScanBackend(storage[0])
+        raise InputError(storage[0], f"unreadable SQLite3 bag: {exc}") from None
+
+
+class Recording:
+    """A bag opened for reading (see the module docstring). Use as a context manager or call :meth:`close`."""
+
+    def __init__(self, path: str | os.PathLike[str]) -> None:
+        self.path = Path(path)
+        self.bag, self.format, self.run_dir = _find_bag(self.path)
+        self.manifest = read_manifest(self.run_dir) if self.run_dir else None
+        try:
+            self._b = _open_backend(self.bag, self.format)
+        except InputError:
+            raise
+        except Exception as exc:  # noqa: BLE001 - any reader failure becomes one clear line
+            raise InputError(self.bag, f"cannot read bag: {type(exc).__name__}: {exc}") from None
+        self.store = B.build_typestore(self._b.topics, self._b.ros1)
+        self._deser = self.store.deserialize_ros1 if self._b.ros1 else self.store.deserialize_cdr
+        cfg = (self.manifest or {}).get("topic_config")
+        try:
+            self.topic_config = TopicConfig.from_dict(cfg, source=str(self.run_dir)) if cfg else TopicConfig()
+        except InputError:
+            self.topic_config = TopicConfig()
+
+    # ---------------------------------------------------------------- metadata
+    @property
+    def topics(self) -> dict[str, B.TopicInfo]:
+        return self._b.topics
+
+    @property
+    def recovered(self) -> bool:
+        """True when the bag was never finished and was read by a recovery scanner."""
+        return self._b.recovered
+
+    @property
+    def truncated(self) -> bool:
+        return self._b.truncated
+
+    @property
+    def complete(self) -> bool | None:
+        """From our manifest: True/False; a bag with a run directory but no manifest is False; a foreign bag None."""
+        if self.manifest is not None:
+            return bool(self.manifest.get("completed")) and not self.recovered
+        if self.run_dir is not None or self.recovered:
+            return False
+        return None
+
+    @property
+    def start_ns(self) -> int | None:
+        return self._b.start_ns
+
+    @property
+    def end_ns(self) -> int | None:
+        return self._b.end_ns
+
+    @property
+    def duration_s(self) -> float:
+        if self.start_ns is None or self.end_ns is None:
+            return 0.0
+        return (self.end_ns - self.start_ns) * 1e-9
+
+    def topics_of_type(self, msgtype: str) -> list[str]:
+        return sorted(t for t, i in self.topics.items() if i.msgtype == msgtype)
+
+    # ---------------------------------------------------------------- messages
+    def messages(self, topics: list[str] | str | None = None) -> Iterator[Message]:
+        """Deserialised messages (time order for indexed bags, file order for recovered ones)."""
+        want = {topics} if isinstance(topics, str) else (set(topics) if topics is not None else None)
+        if want is not None:
+            unknown = sorted(want - set(self.topics))
+            if unknown:
+                raise InputError(self.bag, f"no topic(s) {unknown}; the bag has {sorted(self.topics)}")
+        for topic, msgtype, ts, data in self._b.messages(want):
+            try:
+                msg = self._deser(data, msgtype)
+            except Exception as exc:  # noqa: BLE001
+                raise InputError(self.bag, f"cannot decode a {msgtype} message at {ts} ns: {exc}", where=topic) from None
+            yield Message(topic, msgtype, ts, msg)
+
+    def raw_messages(self, topics: set[str] | None = None) -> Iterator[B.RawMessage]:
+        """Serialised messages as (topic, msgtype, log time ns, bytes): for byte-level comparisons."""
+        return self._b.messages(topics)
+
+    def _typed(self, topic: str | list[str] | None, msgtypes: tuple[str, ...]) -> list[str]:
+        if topic is None:
+            return sorted(t for t, i in self.topics.items() if i.msgtype in msgtypes)
+        names = [topic] if isinstance(topic, str) else list(topic)
+        for name in names:
+            info = self.topics.get(name)
+            if info is None:
+                raise InputError(self.bag, f"no topic {name!r}; the bag has {sorted(self.topics)}")
+            if info.msgtype not in msgtypes:
+                raise InputError(self.bag, f"topic {name!r} is {info.msgtype}, expected {' or '.join(msgtypes)}")
+        return names
+
+    def point_clouds(self, topic: str | list[str] | None = None) -> Iterator[PointCloud]:
+        """PointCloud2 messages (all PointCloud2 topics by default) with any field layout."""
+        names = self._typed(topic, (POINTCLOUD2,))
+        if not names:
+            return
+        for m in self.messages(names):
+            c = m.msg
+            try:
+                pts = unpack(c.data, c.fields, int(c.point_step), int(c.width), int(c.height), int(c.row_step), bool(c.is_bigendian))
+            except InputError as exc:
+                raise InputError(self.bag, f"{exc.detail} (message at {m.log_time_ns} ns)", where=m.topic) from None
+            yield PointCloud(m.topic, stamp_s(c.header.stamp), c.header.frame_id, pts, int(c.height), int(c.width),
+                             bool(c.is_dense), m.log_time_ns)
+
+    def radar_topics(self) -> list[str]:
+        """PointCloud2 topics that look like radar plots (our radar template, or range+bearing fields)."""
+        tmpl = self.topic_config.radar
+        head, _, tail = tmpl.partition("{sensor}")
+        rx = re.compile(re.escape(head) + ".+" + re.escape(tail) + "$")
+        ours = [t for t in self.topics_of_type(POINTCLOUD2) if rx.match(t)]
+        return ours or [t for t in self.topics_of_type(POINTCLOUD2) if "radar" in t.lower()]
+
+    def radar_scans(self, topic: str | list[str] | None = None) -> Iterator[PointCloud]:
+        """Radar plot scans (PointCloud2 with x, y, z, intensity, range, bearing, time)."""
+        names = self.radar_topics() if topic is None else topic
+        if not names:
+            return
+        yield from self.point_clouds(names)
+
+    def images(self, topic: str | list[str] | None = None) -> Iterator[ImageFrame]:
+        """Image and CompressedImage messages decoded to arrays (compressed colour → bgr8)."""
+        names = self._typed(topic, (IMAGE, COMPRESSED_IMAGE))
+        if not names:
+            return
+        for m in self.messages(names):
+            if m.msgtype == IMAGE:
+                px, enc, cf = image_to_array(m.msg, f"{self.bag} {m.topic}"), str(m.msg.encoding), None
+            else:
+                (px, enc), cf = decode_compressed(m.msg, f"{self.bag} {m.topic}"), str(m.msg.format)
+            yield ImageFrame(m.topic, stamp_s(m.msg.header.stamp), m.msg.header.frame_id, px, enc, cf, m.log_time_ns)
+
+    def static_transforms(self) -> list[StaticTransform]:
+        """All transforms on /tf_static (the sensor mounts and the display frame)."""
+        topic = self.topic_config.tf_static
+        if topic not in self.topics:
+            return []
+        out = []
+        for m in self.messages(topic):
+            for tr in m.msg.transforms:
+                tt, q = tr.transform.translation, tr.transform.rotation
+                out.append(StaticTransform(tr.header.frame_id, tr.child_frame_id, (tt.x, tt.y, tt.z), (q.x, q.y, q.z, q.w)))
+        return out
+
+    # ---------------------------------------------------------------- ground truth
+    def ground_truth(self, scenario: str | os.PathLike[str] | None = None) -> dict[str, VesselTruth]:
+        """Ground truth per vessel: from ``scenario`` if given, else our odometry (or pose) topics,
+        else a scenario file beside the bag (named in the manifest, or ``scenario.*`` / one ``*.csv``)."""
+        if scenario is not None:
+            return truth_from_scenario_file(Path(scenario))
+        truth = self._truth_from_topics()
+        if truth:
+            return truth
+        beside = self._scenario_beside()
+        if beside is None:
+            raise InputError(self.bag, "no ground truth: no odometry/pose topics and no scenario file beside the bag")
+        return truth_from_scenario_file(beside)
+
+    def _scenario_beside(self) -> Path | None:
+        folder = self.run_dir or (self.bag.parent if self.bag.is_file() else self.bag.parent)
+        if self.manifest and self.manifest.get("scenario"):
+            p = folder / str(self.manifest["scenario"])
+            if p.is_file():
+                return p
+        cands = sorted(folder.glob("scenario.*")) or sorted(folder.glob("*.csv"))
+        return cands[0] if len(cands) == 1 else None
+
+    def _truth_from_topics(self) -> dict[str, VesselTruth]:
+        cfg = self.topic_config
+        roles = (self.manifest or {}).get("vessels", {})
+        fix_vessels = {cfg.vessel_from_topic("fix", t) for t in self.topics}
+        out: dict[str, VesselTruth] = {}
+        for kind, msgtype in (("odom", ODOMETRY), ("pose", POSE_STAMPED)):
+            for topic in self.topics_of_type(msgtype):
+                name = cfg.vessel_from_topic(kind, topic)
+                name = next((v for v in roles if ros_name(v) == name), name)
+                if name is None or name in out:
+                    continue
+                rows = []
+                for m in self.messages(topic):
+                    msg = m.msg
+                    pose = msg.pose.pose if kind == "odom" else msg.pose
+                    p, q = pose.position, pose.orientation
+                    yaw = math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
+                    if kind == "odom":
+                        lin, ang = msg.twist.twist.linear, msg.twist.twist.angular
+                        c, s = math.cos(yaw), math.sin(yaw)
+                        rows.append((stamp_s(msg.header.stamp), p.x, p.y, p.z, yaw, c * lin.x - s * lin.y, s * lin.x + c * lin.y, ang.z))
+                    else:
+                        rows.append((stamp_s(msg.header.stamp), p.x, p.y, p.z, yaw, np.nan, np.nan, np.nan))
+                if not rows:
+                    continue
+                a = np.array(sorted(rows))
+                if kind == "pose" and len(a) > 1:
+                    a[:, 5] = np.gradient(a[:, 1], a[:, 0])
+                    a[:, 6] = np.gradient(a[:, 2], a[:, 0])
+                    a[:, 7] = np.gradient(np.unwrap(a[:, 4]), a[:, 0])
+                out[name] = VesselTruth(name, *(a[:, i].copy() for i in range(8)),
+                                        ownship=roles.get(name) == "ownship" or name in fix_vessels, source=f"{self.bag} {topic}")
+        return out
+
+    def close(self) -> None:
+        self._b.close()
+
+    def __enter__(self) -> Recording:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
+def open_bag(path: str | os.PathLike[str]) -> Recording:
+    """Open any recording for reading (run dir, rosbag2 dir, .mcap, .db3, .bag)."""
+    return Recording(path)
+
+
+def truth_from_scenario_file(path: Path) -> dict[str, VesselTruth]:
+    """Ground truth from a scenario file: a Gemini CSV (vessels ``V1``, ``V2``, …; the last is taken as
+    the ownship, as in the Gemini data) or any format ``seatwin.scenario`` can load."""
+    if not path.is_file():
+        raise InputError(path, "scenario file not found")
+    if path.suffix.lower() == ".csv":
+        from seatwin.scenario.gemini_csv import read_gemini_csv
+
+        trajs = read_gemini_csv(path)
+        last = max(trajs) if trajs else None
+        vessels = [(f"V{n}", tr, n == last) for n, tr in trajs.items()]
+    else:
+        import seatwin.scenario as S
+
+        loader = next((getattr(S, n) for n in ("load_scenario", "read_scenario", "load") if hasattr(S, n)), None)
+        if loader is None:
+            raise InputError(path, "no scenario reader available for this file type (expected a Gemini .csv)")
+        sc = loader(path)
+        vessels = [(v.name, v.trajectory, getattr(v.role, "value", v.role) == "ownship") for v in sc.vessels]
+    out = {}
+    for name, tr, own in vessels:
+        s = tr.state_at(tr.time)
+        out[name] = VesselTruth(name, tr.time.copy(), s.north, s.east, np.zeros_like(s.north), s.heading,
+                                s.v_north, s.v_east, s.yaw_rate, ownship=own, source=str(path))
+    return out

@@ -1,0 +1,440 @@
+"""RecordingWriter: a run directory holding a bag (rosbag2 MCAP or SQLite3, or ROS 1), the resolved
+scenario and ``manifest.json``.
+
+Layout of ``run_dir``::
+
+    recording/            rosbag2 directory (metadata.yaml + recording.mcap | recording.db3)
+    recording.bag         … or the ROS 1 bag
+    manifest.json         seatwin version, seed, sensors, per-topic counts, completed flag
+    <scenario file>       the resolved scenario (copied or written by the caller)
+
+Data reach the operating system at least every ``flush_interval_s`` of recorded time or
+``flush_wall_s`` of wall time, whichever comes first (MCAP: the open chunk is closed and the file
+flushed; SQLite3: a commit; ROS 1: the open chunk is written), so a run killed with SIGKILL leaves
+a bag readable up to its last flush (see :mod:`seatwin.recording.reader`). ``fsync=True`` also
+forces them to the disk (for power loss; slower).
+"""
+
+from __future__ import annotations
+
+import datetime as dt
+import functools
+import os
+import shutil
+import time as _time
+from collections.abc import Sequence
+from pathlib import Path
+from types import TracebackType
+from typing import Any, Callable, TypeVar
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from seatwin import __version__
+from seatwin.errors import InputError
+from seatwin.geo import GeodeticOrigin
+from seatwin.recording import messages as M
+from seatwin.recording.config import TopicConfig, check_format
+from seatwin.recording.manifest import MANIFEST_NAME, MANIFEST_VERSION, write_manifest
+from seatwin.recording.pointcloud import RADAR_LAYOUT, VLP16_LAYOUT, Layout, pack
+
+BAG_STEM = "recording"
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+def _timed(method: F) -> F:
+    """Add the time spent in an outermost public call to ``self.timing["total_s"]``."""
+
+    @functools.wraps(method)
+    def wrapper(self: RecordingWriter, *args: Any, **kwargs: Any) -> Any:
+        if self._depth:
+            return method(self, *args, **kwargs)
+        self._depth = 1
+        t0 = _time.perf_counter()
+        try:
+            return method(self, *args, **kwargs)
+        finally:
+            self._depth = 0
+            self.timing["total_s"] += _time.perf_counter() - t0
+
+    return wrapper  # type: ignore[return-value]
+
+
+class RecordingError(RuntimeError):
+    """Writing the recording failed (e.g. out of disk); the bag so far stays readable, the manifest says incomplete."""
+
+
+def bag_path(run_dir: Path, fmt: str) -> Path:
+    """Where a run directory keeps its bag for ``fmt``."""
+    return Path(run_dir) / (f"{BAG_STEM}.bag" if fmt == "ros1" else BAG_STEM)
+
+
+class RecordingWriter:
+    """Write one run: sensor data, ground truth and tf into a bag, plus the manifest.
+
+    Use as a context manager; leaving it normally marks the run completed, leaving it by an
+    exception closes the bag cleanly but records ``completed: false`` and the error.
+
+    ``scenario_file`` is copied into ``run_dir`` (a file already there is just named in the
+    manifest); ``sensors`` and ``metadata`` go into the manifest as given (JSON-serialisable).
+    """
+
+    def __init__(
+        self,
+        run_dir: str | os.PathLike[str],
+        fmt: str = "mcap",
+        *,
+        topics: TopicConfig | None = None,
+        origin: GeodeticOrigin | None = None,
+        seed: int | None = None,
+        sensors: dict[str, Any] | None = None,
+        scenario_file: str | os.PathLike[str] | None = None,
+        metadata: dict[str, Any] | None = None,
+        flush_interval_s: float = 1.0,
+        flush_wall_s: float = 2.0,
+        row_step_zero: bool = False,
+        fsync: bool = False,
+    ) -> None:
+        self.format = check_format(fmt)
+        self.run_dir = Path(run_dir)
+        self.topics = topics or TopicConfig()
+        self.origin = origin
+        self.store = M.typestore(self.format)
+        self.flush_interval_s = float(flush_interval_s)
+        self.flush_wall_s = float(flush_wall_s)
+        self._last_flush_wall = _time.perf_counter()
+        self.row_step_zero = row_step_zero
+        self.fsync = fsync
+        self.counts: dict[str, int] = {}
+        self.types: dict[str, str] = {}
+        self.vessels: dict[str, str] = {}
+        self._vessel_names: dict[str, tuple[str, str, str, str]] = {}
+        self.notes: list[str] = []
+        self._conns: dict[str, Any] = {}
+        self._t0: float | None = None
+        self._t1: float | None = None
+        self._last_flush: float | None = None
+        self._static_written = False
+        self._closed = False
+        self._error: str | None = None
+        self._serialize = self.store.serialize_ros1 if self.format == "ros1" else self.store.serialize_cdr
+        self.bag = bag_path(self.run_dir, self.format)
+        self.timing = {"total_s": 0.0, "serialize_s": 0.0, "write_s": 0.0}
+        """Seconds spent in this writer's calls (``total_s``; recording_share = total_s / wall time),
+        of which serialising and handing bytes to the bag storage."""
+        self._depth = 0
+
+        for existing in (self.bag, self.run_dir / MANIFEST_NAME):
+            if existing.exists():
+                raise InputError(existing, "a recording exists here already; choose a new run directory")
+        self.run_dir.mkdir(parents=True, exist_ok=True)
+        scenario_name = None
+        if scenario_file is not None:
+            src = Path(scenario_file)
+            if not src.is_file():
+                raise InputError(src, "scenario file to record beside the bag does not exist")
+            scenario_name = src.name
+            if src.resolve() != (self.run_dir / src.name).resolve():
+                shutil.copyfile(src, self.run_dir / src.name)
+        self._manifest: dict[str, Any] = {
+            "manifest_version": MANIFEST_VERSION,
+            "seatwin_version": __version__,
+            "completed": False,
+            "format": self.format,
+            "bag": self.bag.name,
+            "started_utc": _utcnow(),
+            "finished_utc": None,
+            "seed": seed,
+            "origin": None if origin is None else {"lat_deg": origin.lat_deg, "lon_deg": origin.lon_deg, "height_m": origin.height_m},
+            "scenario": scenario_name,
+            "sensors": sensors or {},
+            "topic_config": self.topics.to_dict(),
+            "metadata": metadata or {},
+        }
+        self._open_bag()
+        self._write_manifest()
+
+    # ------------------------------------------------------------------ bag backends
+    def _open_bag(self) -> None:
+        if self.format == "ros1":
+            from seatwin.recording.ros1_storage import LeanRos1Writer
+
+            self._w = LeanRos1Writer(self.bag)
+        else:
+            from rosbags.rosbag2 import StoragePlugin
+
+            from seatwin.recording.mcap_storage import LeanWriter
+
+            plugin = StoragePlugin.MCAP if self.format == "mcap" else StoragePlugin.SQLITE3
+            self._w = LeanWriter(self.bag, version=9, storage_plugin=plugin)
+        self._w.open()
+        if self.format == "sqlite3" and not self.fsync:
+            # Commits need not wait for the disk: a killed process loses nothing the kernel holds, and
+            # the on-disk rollback journal (kept) still undoes an interrupted transaction.
+            self._w.storage.conn.execute("PRAGMA synchronous=OFF")
+
+    def _connection(self, topic: str, msgtype: str) -> Any:
+        conn = self._conns.get(topic)
+        if conn is not None:
+            if self.types[topic] != msgtype:
+                raise InputError(topic, f"topic already carries {self.types[topic]}, cannot write {msgtype}")
+            return conn
+        if self.format == "ros1":
+            conn = self._w.add_connection(topic, msgtype, typestore=self.store,
+                                          latching=1 if topic == self.topics.tf_static else None)
+        else:
+            qos = [_latched_qos()] if topic == self.topics.tf_static else ()
+            conn = self._w.add_connection(topic, msgtype, typestore=self.store, offered_qos_profiles=qos)
+        self._conns[topic] = conn
+        self.types[topic] = msgtype
+        self.counts[topic] = 0
+        return conn
+
+    def _flush_storage(self) -> None:
+        """Push everything written so far to the operating system (SIGKILL-safe)."""
+        w = self._w
+        if self.format == "mcap":
+            st = w.storage
+            if st.chunk.msgs:
+                st.close_chunk()
+            st.bio.flush()
+            if self.fsync:
+                os.fsync(st.bio.fileno())
+        elif self.format == "sqlite3":
+            w.storage.conn.commit()
+        else:
+            chunk = w.chunks[-1]
+            if chunk.data.tell() > 0 and any(chunk.connections.values()):
+                w.write_chunk(chunk)
+            w.bio.flush()
+            if self.fsync:
+                os.fsync(w.bio.fileno())
+
+    # ------------------------------------------------------------------ generic writing
+    @_timed
+    def write(self, topic: str, t: float, msg: Any) -> None:
+        """Serialise and write a message object (from this writer's ``store``) at POSIX time ``t``."""
+        t0 = _time.perf_counter()
+        data = self._serialize(msg, msg.__msgtype__)
+        self.timing["serialize_s"] += _time.perf_counter() - t0
+        self.write_raw(topic, msg.__msgtype__, t, data)
+
+    @_timed
+    def write_raw(self, topic: str, msgtype: str, t: float, data: bytes | memoryview) -> None:
+        """Write an already serialised message (CDR for rosbag2, ROS 1 for .bag)."""
+        if self._closed:
+            raise RecordingError(f"{self.bag}: recording is closed")
+        t0 = _time.perf_counter()
+        try:
+            conn = self._connection(topic, msgtype)
+            self._w.write(conn, M.stamp_ns(t), data)
+            self.counts[topic] += 1
+            self._t0 = t if self._t0 is None else min(self._t0, t)
+            self._t1 = t if self._t1 is None else max(self._t1, t)
+            if self._last_flush is None:
+                self._last_flush = t
+            elif t - self._last_flush >= self.flush_interval_s or t0 - self._last_flush_wall >= self.flush_wall_s:
+                self.flush()
+                self._last_flush, self._last_flush_wall = t, t0
+            elif self.format == "mcap" and not self._w.storage.chunk.msgs:  # rosbags closed a full chunk
+                self._w.storage.bio.flush()
+        except OSError as exc:
+            self._fail(exc)
+        finally:
+            self.timing["write_s"] += _time.perf_counter() - t0
+
+    @_timed
+    def flush(self) -> None:
+        """Flush the bag and refresh the manifest (``completed`` stays false until :meth:`close`)."""
+        try:
+            self._flush_storage()
+            self._write_manifest()
+        except OSError as exc:
+            self._fail(exc)
+
+    def _fail(self, exc: OSError) -> None:
+        self._error = f"{type(exc).__name__}: {exc}"
+        self._closed = True
+        try:
+            self._w.abort()
+        except Exception:  # noqa: BLE001 - the bag is being abandoned; its readable prefix stays
+            pass
+        try:
+            self._write_manifest()
+        except OSError:
+            pass
+        raise RecordingError(f"{self.bag}: recording stopped: {self._error}; the bag is readable up to its last flush") from exc
+
+    # ------------------------------------------------------------------ typed helpers
+    @_timed
+    def write_sweep(
+        self, topic: str, frame_id: str, t: float,
+        x: ArrayLike, y: ArrayLike, z: ArrayLike, intensity: ArrayLike, ring: ArrayLike, time: ArrayLike,
+    ) -> None:
+        """A lidar sweep as PointCloud2 in the VLP-16 layout (thesis Table 4.2); ``t`` = sweep start,
+        ``time`` = seconds since it; pass only returned points (no-return beams omitted: is_dense)."""
+        data = pack(VLP16_LAYOUT, x=x, y=y, z=z, intensity=intensity, ring=ring, time=time)
+        self.write_cloud(topic, frame_id, t, VLP16_LAYOUT, data)
+
+    @_timed
+    def write_cloud(self, topic: str, frame_id: str, t: float, layout: Layout, data: np.ndarray, is_dense: bool = True) -> None:
+        """A PointCloud2 of any fixed ``layout`` from packed bytes (see :func:`pointcloud.pack`)."""
+        self.write(topic, t, M.point_cloud2(self.store, t, frame_id, layout, data, is_dense=is_dense,
+                                            row_step_zero=self.row_step_zero))
+
+    @_timed
+    def write_radar(
+        self, topic: str, frame_id: str, t: float, x: ArrayLike, y: ArrayLike, z: ArrayLike | None = None, *,
+        intensity: ArrayLike | None = None, range: ArrayLike | None = None, bearing: ArrayLike | None = None,
+        time: ArrayLike | None = None, origin: tuple[float, float] = (0.0, 0.0),
+    ) -> None:
+        """Radar plots of one scan as PointCloud2 (:data:`pointcloud.RADAR_LAYOUT`).
+
+        ``x, y, z`` in ``frame_id`` (the radar frame, or the world NED frame for imported data);
+        range and bearing default to those of (x, y) seen from ``origin`` (the radar's x, y in
+        that frame), bearing clockwise from x seen from above — in a z-up (FLU) frame that is
+        atan2(−y, x), in the z-down world NED frame atan2(y, x).
+        """
+        xa, ya = np.asarray(x, float).reshape(-1), np.asarray(y, float).reshape(-1)
+        dx, dy = xa - origin[0], ya - origin[1]
+        z_down = frame_id == self.topics.world_frame or frame_id.endswith("_ned")
+        if range is None:
+            range = np.hypot(dx, dy)
+        if bearing is None:
+            bearing = np.arctan2(dy if z_down else -dy, dx)
+        data = pack(RADAR_LAYOUT, x=xa, y=ya, z=z, intensity=intensity, range=range, bearing=bearing, time=time)
+        self.write_cloud(topic, frame_id, t, RADAR_LAYOUT, data)
+
+    @_timed
+    def write_image(self, topic: str, frame_id: str, t: float, pixels: np.ndarray, encoding: str = "bgr8") -> None:
+        """A ``sensor_msgs/Image`` (thesis: bgr8, 612×512)."""
+        self.write(topic, t, M.image(self.store, t, frame_id, pixels, encoding))
+
+    @_timed
+    def write_compressed_image(self, topic: str, frame_id: str, t: float, pixels: np.ndarray,
+                               fmt: str = "jpeg", encoding: str = "bgr8", quality: int = 90) -> None:
+        """A ``sensor_msgs/CompressedImage`` (JPEG or PNG via Pillow) from an H×W×3 ``encoding`` array."""
+        from seatwin.recording.images import encode_image
+
+        self.write(topic, t, M.compressed_image(self.store, t, frame_id, encode_image(pixels, fmt, encoding, quality), fmt))
+
+    @_timed
+    def write_static_transforms(self, t: float, transforms: Sequence[M.StaticTransform] = ()) -> None:
+        """Sensor mounts (and, the first time, the ENU display frame above the NED world frame) on /tf_static."""
+        items = list(transforms)
+        if not self._static_written and self.topics.display_frame:
+            items.insert(0, M.StaticTransform(self.topics.display_frame, self.topics.world_frame, (0.0, 0.0, 0.0),
+                                              M.quaternion_from_matrix(M.R_ENU_NED)))
+        if not items:
+            return
+        msgs = [M.transform_stamped(self.store, t, s.parent, s.child, s.translation, s.rotation) for s in items]
+        self.write(self.topics.tf_static, t, M.tf_message(self.store, msgs))
+        self._static_written = True
+
+    @_timed
+    def write_ground_truth(self, t: float, vessels: Sequence[M.VesselPose]) -> None:
+        """Ground truth of every vessel at ``t``: PoseStamped + Odometry each, NavSatFix of the ownship, one /tf."""
+        if not self._static_written:
+            self.write_static_transforms(t)
+        tp = self.topics
+        tfs = []
+        for v in vessels:
+            names = self._vessel_names.get(v.name)
+            if names is None:
+                names = self._vessel_names[v.name] = (
+                    tp.body(v.name), tp.topic("pose", vessel=v.name), tp.topic("odom", vessel=v.name), tp.topic("fix", vessel=v.name))
+                self.vessels[v.name] = "ownship" if v.ownship else "target"
+            body, pose_topic, odom_topic, fix_topic = names
+            self.write(pose_topic, t, M.pose_stamped(self.store, t, tp.world_frame, v))
+            self.write(odom_topic, t, M.odometry(self.store, t, tp.world_frame, body, v))
+            if v.ownship:
+                if self.origin is not None:
+                    self.write(fix_topic, t, M.nav_sat_fix(self.store, t, body, v, self.origin))
+                elif not any("NavSatFix" in n for n in self.notes):
+                    self.notes.append("no geodetic origin given: the ownship's NavSatFix was not recorded")
+            tfs.append(M.transform_stamped(self.store, t, tp.world_frame, body, (v.north, v.east, v.down),
+                                           M.quaternion_yaw(v.heading)))
+        if tfs:
+            self.write(tp.tf, t, M.tf_message(self.store, tfs))
+
+    # ------------------------------------------------------------------ manifest and closing
+    def _write_manifest(self, completed: bool = False) -> None:
+        m = self._manifest
+        m.update(
+            completed=completed,
+            error=self._error,
+            start_time=self._t0,
+            end_time=self._t1,
+            vessels=dict(self.vessels),
+            topics={k: {"type": self.types[k], "count": self.counts[k]} for k in sorted(self.counts)},
+            message_count=sum(self.counts.values()),
+            notes=list(self.notes),
+            recording_time_s={k: round(v, 6) for k, v in self.timing.items()},
+        )
+        if completed or self._error:
+            m["finished_utc"] = _utcnow()
+        write_manifest(self.run_dir, m)
+
+    @_timed
+    def close(self, completed: bool = True, error: str | None = None) -> None:
+        """Finish the bag (index, footer, metadata.yaml) and write the manifest; idempotent."""
+        if self._closed:
+            return
+        self._closed = True
+        if error:
+            self._error = error
+        try:
+            self._w.close()
+        except OSError as exc:
+            self._error = f"{type(exc).__name__}: {exc}"
+            try:
+                self._w.abort()
+            except Exception:  # noqa: BLE001
+                pass
+            completed = False
+        self._write_manifest(completed=completed and self._error is None)
+        if self._error and not error:
+            raise RecordingError(f"{self.bag}: closing failed: {self._error}")
+
+    @property
+    def manifest(self) -> dict[str, Any]:
+        return dict(self._manifest)
+
+    def __enter__(self) -> RecordingWriter:
+        return self
+
+    def __exit__(self, exc_type: type[BaseException] | None, exc: BaseException | None, tb: TracebackType | None) -> None:
+        if exc is None:
+            self.close()
+        elif not self._closed:
+            self.close(completed=False, error=f"{type(exc).__name__}: {exc}")
+
+
+def open_recording(run_dir: str | os.PathLike[str], fmt: str = "mcap", **kwargs: Any) -> RecordingWriter:
+    """Start a recording in ``run_dir`` (see :class:`RecordingWriter` for the options)."""
+    return RecordingWriter(run_dir, fmt, **kwargs)
+
+
+def poses_from_scenario(scenario: Any, t: float) -> list[M.VesselPose]:
+    """Every vessel's :class:`~seatwin.recording.messages.VesselPose` at ``t`` from a :class:`seatwin.scenario.Scenario`."""
+    out = []
+    for v in scenario.vessels:
+        s = v.trajectory.state_at(t)
+        out.append(M.VesselPose(
+            name=v.name, north=float(s.north), east=float(s.east), heading=float(s.heading),
+            v_north=float(s.v_north), v_east=float(s.v_east), yaw_rate=float(s.yaw_rate),
+            ownship=getattr(v.role, "value", v.role) == "ownship",
+        ))
+    return out
+
+
+def _latched_qos() -> Any:
+    from rosbags.interfaces import Qos, QosDurability, QosHistory, QosLiveliness, QosReliability, QosTime
+
+    zero = QosTime(0, 0)
+    return Qos(QosHistory.KEEP_LAST, 1, QosReliability.RELIABLE, QosDurability.TRANSIENT_LOCAL,
+               zero, zero, QosLiveliness.AUTOMATIC, zero, False)
+
+
+def _utcnow() -> str:
+    return dt.datetime.now(dt.timezone.utc).isoformat(timespec="seconds")

@@ -1,0 +1,129 @@
+"""Faults: a run killed with SIGKILL, a full disk, bags cut at an arbitrary byte."""
+
+from __future__ import annotations
+
+import errno
+import json
+import os
+import signal
+import subprocess
+import sys
+import threading
+from pathlib import Path
+
+import numpy as np
+import pytest
+from recording_helpers import T0, sweep, write_run
+
+from seatwin.cli.main import run
+from seatwin.recording import RecordingError, RecordingWriter, open_bag
+
+CHILD = Path(__file__).with_name("_killed_writer.py")
+
+
+def _kill_after(run_dir: Path, fmt: str, sweeps: int, timeout: float = 60.0) -> None:
+    proc = subprocess.Popen([sys.executable, str(CHILD), str(run_dir), fmt], stdout=subprocess.PIPE, text=True)
+    reached = threading.Event()
+
+    def watch() -> None:
+        assert proc.stdout is not None
+        for line in proc.stdout:
+            if int(line) >= sweeps:
+                reached.set()
+                return
+
+    threading.Thread(target=watch, daemon=True).start()
+    ok = reached.wait(timeout)
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    assert ok, "the child did not record enough sweeps in time"
+    assert proc.returncode == -signal.SIGKILL
+
+
+def test_sigkill_leaves_readable_prefix(tmp_path: Path, fmt: str, capsys: pytest.CaptureFixture[str]) -> None:
+    run_dir = tmp_path / "run"
+    _kill_after(run_dir, fmt, sweeps=12)
+    manifest = json.loads((run_dir / "manifest.json").read_text())
+    assert manifest["completed"] is False
+    flushed = manifest["topics"]["/lidar/points"]["count"]
+    assert flushed >= 10
+    with open_bag(run_dir) as rec:
+        assert rec.recovered and rec.complete is False
+        clouds = list(rec.point_clouds("/lidar/points"))
+        assert len(clouds) >= flushed
+        assert all(c.width == 2000 and c.points["ring"].max() < 16 for c in clouds)
+        stamps = np.array([c.stamp for c in clouds])
+        np.testing.assert_allclose(np.diff(stamps), 0.1, atol=1e-6)
+        truth = rec.ground_truth()["own"]
+        assert len(truth.time) >= flushed - 1
+    assert run(["bag", "info", str(run_dir)]) == 0
+    out = capsys.readouterr().out
+    assert "NO (run did not finish)" in out and "recovered" in out
+
+
+class _FullDisk:
+    """A file object that accepts ``budget`` more bytes, then fails like a full disk."""
+
+    def __init__(self, f, budget: int) -> None:
+        self.f, self.budget = f, budget
+
+    def write(self, b) -> int:
+        b = bytes(b)
+        if len(b) > self.budget:
+            self.f.write(b[: self.budget])
+            self.budget = 0
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        self.budget -= len(b)
+        return self.f.write(b)
+
+    def __getattr__(self, name: str):
+        return getattr(self.f, name)
+
+
+@pytest.mark.parametrize("fmt", ["mcap", "ros1"])
+def test_out_of_disk(tmp_path: Path, fmt: str) -> None:
+    w = RecordingWriter(tmp_path / "run", fmt, flush_interval_s=0.2)
+    if fmt == "mcap":
+        w._w.storage.bio = _FullDisk(w._w.storage.bio, 150_000)
+    else:
+        w._w.bio = _FullDisk(w._w.bio, 150_000)
+    written = 0
+    with pytest.raises(RecordingError, match="No space left"):
+        for k in range(100):
+            w.write_sweep("/lidar/points", "lidar", T0 + 0.1 * k, **sweep(k, n=1000))
+            written += 1
+    manifest = json.loads((tmp_path / "run" / "manifest.json").read_text())
+    assert manifest["completed"] is False and "No space left" in manifest["error"]
+    with open_bag(tmp_path / "run") as rec:
+        assert rec.complete is False and rec.recovered
+        clouds = list(rec.point_clouds())
+    assert 1 <= len(clouds) < written + 1
+    for k, c in enumerate(clouds):
+        np.testing.assert_array_equal(c.points["x"], sweep(k, n=1000)["x"])
+    with pytest.raises(RecordingError, match="closed"):
+        w.write_sweep("/lidar/points", "lidar", T0, **sweep(0, n=10))
+
+
+@pytest.mark.parametrize("fmt", ["mcap", "ros1"])
+@pytest.mark.parametrize("fraction", [0.3, 0.7, 0.999])
+def test_bag_cut_at_any_byte(tmp_path: Path, fmt: str, fraction: float) -> None:
+    """Copy a finished bag's first bytes only: the reader returns the complete chunks before the cut."""
+    write_run(tmp_path / "run", fmt, n_sweeps=40, flush_interval_s=0.3)
+    src = tmp_path / "run" / ("recording.bag" if fmt == "ros1" else "recording/recording.mcap")
+    data = src.read_bytes()
+    cut = tmp_path / ("cut.bag" if fmt == "ros1" else "cut.mcap")
+    cut.write_bytes(data[: int(len(data) * fraction)])
+    with open_bag(cut) as rec:
+        assert rec.recovered and rec.complete is False
+        clouds = list(rec.point_clouds("/lidar/points"))
+    assert 0 < len(clouds) < 40 or fraction > 0.99
+    for k, c in enumerate(clouds):
+        np.testing.assert_array_equal(c.points["time"], sweep(k)["time"])
+
+
+def test_rosbag2_without_metadata_yaml(tmp_path: Path) -> None:
+    write_run(tmp_path / "run", "sqlite3", n_sweeps=3)
+    (tmp_path / "run" / "recording" / "metadata.yaml").unlink()
+    with open_bag(tmp_path / "run" / "recording") as rec:
+        assert rec.recovered
+        assert len(list(rec.point_clouds("/lidar/points"))) == 3
