@@ -67,3 +67,19 @@ def test_unpack_roundtrip() -> None:
 def test_split_stamp_rounding() -> None:
     assert split_stamp(1.9999999999) == (2, 0)
     assert split_stamp(-0.5) == (-1, 500_000_000)
+
+
+def test_bad_columns_are_input_errors() -> None:
+    import pytest
+
+    from seatwin.errors import InputError
+
+    s = sweep(4, n=5)
+    with pytest.raises(InputError, match=r"'ring' \(uint16\) needs values in \[0, 65535\], got \[-1"):
+        pack(VLP16_LAYOUT, **{**s, "ring": [-1, 0, 1, 2, 3]})
+    with pytest.raises(InputError, match="columns differ in length"):
+        pack(VLP16_LAYOUT, **{**s, "x": [1.0]})
+    with pytest.raises(InputError, match="unknown field"):
+        pack(VLP16_LAYOUT, rgb=[1])
+    with pytest.raises(InputError, match="finite"):
+        split_stamp(float("nan"))

@@ -29,6 +29,9 @@ def _write(cls, path: Path) -> bytes:
         w.write(b, t + k * 1000 - 500, rng.integers(0, 255, n, dtype=np.uint8).tobytes())  # out of order across topics
         if k % 17 == 0:
             w.storage.close_chunk()  # a flush, as RecordingWriter does
+        if k == 17:  # a new topic whose first message is large: its schema/channel precede it
+            c = w.add_connection("/c", "std_msgs/msg/ByteMultiArray", typestore=store)
+            w.write(c, t + k * 1000 + 1, bytes(300_000))
     w.close()
     return (path / f"{path.name}.mcap").read_bytes()
 
@@ -56,17 +59,17 @@ def test_large_messages_in_own_chunks_read_back(tmp_path: Path) -> None:
         want = [(c.topic, t, bytes(d)) for c, t, d in ref.messages()]
     with Reader(tmp_path / "bag") as r:
         got = [(c.topic, t, bytes(d)) for c, t, d in r.messages()]
-    assert got == want and len(got) == 120
+    assert got == want and len(got) == 121
     with (tmp_path / "bag" / "bag.mcap").open("rb") as f:
         reader = make_reader(f)
-        assert sum(1 for _ in reader.iter_messages()) == 120
-        assert reader.get_summary().statistics.message_count == 120
+        assert sum(1 for _ in reader.iter_messages()) == 121
+        assert reader.get_summary().statistics.message_count == 121
     data = (tmp_path / "bag" / "bag.mcap").read_bytes()
     (tmp_path / "cut.mcap").write_bytes(data[: len(data) // 2])
     with open_bag(tmp_path / "cut.mcap") as rec:
         assert rec.recovered
         cut = [(topic, ts) for topic, _, ts, _ in rec._b.messages(None)]  # raw: the payloads are not CDR
-    assert 0 < len(cut) < 120
+    assert 0 < len(cut) < 121
     assert cut == _file_order(tmp_path)[: len(cut)]
 
 

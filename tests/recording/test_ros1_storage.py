@@ -14,13 +14,16 @@ from seatwin.rng import frame_rng
 
 
 def _write(cls, path: Path) -> list[tuple[str, int]]:
-    """Write 77 messages, 1 in 3 of the large ones ≥ 64 kB; return (topic, time) in write order."""
+    """Write 78 messages, 1 in 3 of the large ones ≥ 64 kB; return (topic, time) in write order."""
     order = []
     store = typestore("ros1")
     rng = frame_rng(0, "test/ros1", 0)
     t = int(T0 * 1e9)
     with cls(path) as w:
         a = w.add_connection("/a", "std_msgs/msg/String", typestore=store)
+        c = w.add_connection("/c", "std_msgs/msg/ByteMultiArray", typestore=store)
+        w.write(c, t - 1, bytes(100_000))  # large first message: the connection records open its chunk
+        order.append(("/c", t - 1))
         for k in range(40):
             if k == 3:
                 b = w.add_connection("/b", "std_msgs/msg/UInt8MultiArray", typestore=store)
@@ -42,12 +45,12 @@ def test_lean_ros1_same_messages_as_rosbags(tmp_path: Path) -> None:
     for name in ("ours", "ref"):
         with Reader(tmp_path / f"{name}.bag") as r:
             rows[name] = [(c.topic, c.msgtype, t, bytes(d)) for c, t, d in r.messages()]
-    assert len(rows["ours"]) == 77 and rows["ours"] == rows["ref"]
+    assert len(rows["ours"]) == 78 and rows["ours"] == rows["ref"]
 
     data = (tmp_path / "ours.bag").read_bytes()
     (tmp_path / "cut.bag").write_bytes(data[: len(data) * 2 // 3])
     with open_bag(tmp_path / "cut.bag") as rec:
         assert rec.recovered
         cut = [(topic, ts) for topic, _, ts, _ in rec._b.messages(None)]  # raw: the payloads are random bytes
-    assert 20 < len(cut) < 77
+    assert 20 < len(cut) < 78
     assert cut == order[: len(cut)]  # a prefix, in write order

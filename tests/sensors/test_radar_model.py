@@ -93,3 +93,26 @@ def test_radar_in_a_builtin_scene_sees_the_targets():
         d = np.hypot(s.north[i] - float(st.north), s.east[i] - float(st.east))
         assert d.min() < 10.0, v.name
     assert (s.kind == KIND_LAND).any()
+
+
+def test_beam_timing_sees_a_moving_target_where_the_beam_passes_it():
+    from seatwin.scenario.model import Dimensions, Role, Scenario, Trajectory, Vessel
+    from seatwin.sensors.radar.world import scan_scene
+    from seatwin.world.scene import Scene
+    from seatwin.world.vessels import vessel_model
+
+    t = np.array([0.0, 10.0])
+    own = Trajectory(t, [0.0, 0.0], [0.0, 0.0], [0.0, 0.0])
+    # Target due west (azimuth 270° from a north-facing bow: the beam gets there 3/4 of a rotation
+    # after the stamp), moving north at 10 m/s.
+    tgt = Trajectory(t, [0.0, 100.0], [-300.0, -300.0], [0.0, 0.0])
+    sc = Scenario("t", [Vessel("own", Role.OWNSHIP, own), Vessel("tgt", Role.TARGET, tgt, dimensions=Dimensions(8, 3, 2))])
+    scene = Scene([], {v.name: (vessel_model("generic", v.dimensions), v.trajectory) for v in sc.vessels})
+    out = {}
+    for mode in ("scan", "beam"):
+        cfg = RadarConfig(pose_at=mode, rotation_period_s=2.0, **SURE)
+        s = scan_scene(RadarModel(cfg, seed=0), scene, "own", 0, 0.0)
+        assert len(s) == 1
+        out[mode] = s.north[0]
+    assert abs(out["scan"]) < 3.0
+    assert out["beam"] == pytest.approx(10.0 * 2.0 * 0.75, abs=3.0)

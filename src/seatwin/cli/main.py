@@ -39,6 +39,7 @@ COMMAND_MODULES: list[str] = [
     "radar",
     "fidelity",
     "demo",
+    "sweep",
 ]
 
 

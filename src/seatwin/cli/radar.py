@@ -99,6 +99,7 @@ def register(app: typer.Typer) -> None:
         out: Path = typer.Option(None, "--out", metavar="PLOTS.csv", help="CSV of plots to write."),
         out_bag: Path = typer.Option(None, "--out-bag", metavar="RUN_DIR", help="New run directory: a recording with the plots on /radar/detections, ground truth and tf."),
         fmt: str = typer.Option("mcap", "--format", metavar="FMT", help="Bag format of --out-bag: mcap, sqlite3 or ros1."),
+        spokes_dir: Path = typer.Option(None, "--spokes-dir", metavar="DIR", help="Also write each rotation's raw spokes (Gemini RadarStreamingRequest fields) as DIR/scan_NNNNNN.npz."),
         config: Path = typer.Option(None, "--radar", metavar="RADAR.yaml", help="Radar configuration (default: built-in)."),
         seed: int = typer.Option(None, "--seed", help="Seed of the random draws (default: the scenario's)."),
         duration: float = typer.Option(None, "--duration", min=0.0, help="Simulate only the first SECONDS."),
@@ -114,8 +115,8 @@ def register(app: typer.Typer) -> None:
         from seatwin.sensors.radar.world import scan_scene, scan_times
         from seatwin.world.scene import Scene
 
-        if out is None and out_bag is None:
-            raise InputError("--out", "give --out PLOTS.csv and/or --out-bag RUN_DIR")
+        if out is None and out_bag is None and spokes_dir is None:
+            raise InputError("--out", "give --out PLOTS.csv, --out-bag RUN_DIR and/or --spokes-dir DIR")
         sc = load_scenario(scenario)
         if sc.ownship is None:
             raise InputError(scenario, "the scenario has no ownship to carry the radar")
@@ -139,7 +140,14 @@ def register(app: typer.Typer) -> None:
                                                          sensors={"radar": cfg.model_dump(mode="json", exclude={"fit"})}))
                 bag.write_static_transforms(sc.start, [radar_mount(cfg, sc.ownship.name)])
             for k, t in enumerate(scan_times(sc.start, end, cfg.rotation_period_s)):
-                s = scan_scene(model, scene, sc.ownship.name, k, float(t))
+                s = scan_scene(model, scene, sc.ownship.name, k, float(t), with_spokes=spokes_dir is not None)
+                if spokes_dir is not None:
+                    import numpy as np
+
+                    spokes_dir.mkdir(parents=True, exist_ok=True)
+                    req = s.spokes.to_request_dict()
+                    req["radar_spokes"] = s.spokes.intensities
+                    np.savez_compressed(spokes_dir / f"scan_{k:06d}.npz", **{key: np.asarray(v) for key, v in req.items()})
                 if w is not None:
                     for i in range(len(s)):
                         w.writerow([repr(float(t)), f"{s.north[i]:.3f}", f"{s.east[i]:.3f}", f"{s.range_m[i]:.3f}",
@@ -148,4 +156,4 @@ def register(app: typer.Typer) -> None:
                     bag.write_ground_truth(float(t), poses_from_scenario(sc, float(t)))
                     write_scan(bag, s, cfg)
                 n += len(s)
-        typer.echo(f"simulated {k + 1} radar scans, {n} plots" + (f" → {out}" if out else "") + (f" → {out_bag}" if out_bag else ""))
+        typer.echo(f"simulated {k + 1} radar scans, {n} plots" + "".join(f" → {p}" for p in (out, out_bag, spokes_dir) if p))

@@ -18,6 +18,7 @@ from numpy.typing import NDArray
 from rosbags.typesys import Stores, get_typestore
 from rosbags.typesys.store import Typestore
 
+from seatwin.errors import InputError
 from seatwin.geo import GeodeticOrigin, ned_to_llh_exact
 from seatwin.recording.pointcloud import Layout
 
@@ -39,6 +40,8 @@ def typestore(fmt: str) -> Typestore:
 
 def split_stamp(t: float) -> tuple[int, int]:
     """POSIX seconds → (sec, nanosec) with 0 ≤ nanosec < 1e9."""
+    if not math.isfinite(t):
+        raise InputError("time stamp", f"must be a finite number of seconds, got {t!r}")
     sec = math.floor(t)
     nsec = round((t - sec) * 1e9)
     if nsec >= 1_000_000_000:

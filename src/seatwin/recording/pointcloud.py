@@ -123,6 +123,12 @@ def pack(layout: Layout, **columns: ArrayLike) -> NDArray[np.uint8]:
     n = next(iter(sizes.values()), 0)
     out = np.zeros(n, dtype=dtype)
     for k, a in arrays.items():
+        kind = dtype[k].base
+        if kind.kind in "iu" and n:
+            info = np.iinfo(kind)
+            lo, hi = a.min(), a.max()
+            if lo < info.min or hi > info.max or (a.dtype.kind == "f" and not np.isfinite(a).all()):
+                raise InputError("point cloud", f"field {k!r} ({kind.name}) needs values in [{info.min}, {info.max}], got [{lo}, {hi}]")
         out[k] = a.reshape(n)
     return out.view(np.uint8)
 

@@ -105,7 +105,7 @@ def simulate(
     else:
         writer.close(completed=True)
     wall = _time.perf_counter() - wall0
-    rec_s = writer.timing["serialize_s"] + writer.timing["write_s"]
+    rec_s = writer.timing.get("total_s", writer.timing["serialize_s"] + writer.timing["write_s"])
     sim_s = (t1 - t0) if completed else max(0.0, done_t - t0)
     return SimulationResult(Path(run_dir), completed, sim_s, wall, frames, rec_s)
 

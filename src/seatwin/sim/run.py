@@ -5,6 +5,8 @@ from __future__ import annotations
 import dataclasses
 from pathlib import Path
 
+import numpy as np
+
 from seatwin.errors import InputError
 from seatwin.recording.config import check_format
 from seatwin.recording.manifest import MANIFEST_NAME
@@ -27,6 +29,7 @@ def simulate_scenario(
     ray_drop: float | None = None,
     range_noise: float | None = None,
     dissipation: bool = False,
+    mount_yaw_bias_deg: float = 0.0,
     fmt: str = "mcap",
     ground_truth_rate_hz: float = 10.0,
     progress: bool = True,
@@ -35,10 +38,12 @@ def simulate_scenario(
 
     ``seed`` overrides the scenario's seed; ``ray_drop``/``range_noise`` (σ, m) override the
     preset's; ``dissipation`` switches range-dependent return probability on.
+    ``mount_yaw_bias_deg`` simulates the lidar turned by that much more than its nominal mount
+    while ``/tf_static`` still records the nominal mount (a miscalibrated extrinsic).
     """
     from seatwin.scenario.load import save_scenario
     from seatwin.sensors.lidar import lidar_for_scenario
-    from seatwin.sensors.lidar_config import RangeDissipation, lidar_preset as preset
+    from seatwin.sensors.lidar_config import MILLIAMPERE_LIDAR_MOUNT, RangeDissipation, lidar_preset as preset
 
     run_dir = Path(run_dir)
     check_format(fmt)
@@ -60,10 +65,13 @@ def simulate_scenario(
         config = config.with_(range_accuracy=2.0 * float(range_noise))
     if dissipation:
         config = config.with_(dissipation=RangeDissipation())
-    lidar = lidar_for_scenario(scenario, config=config, range_model=lidar_mode)
+    if not np.isfinite(mount_yaw_bias_deg):
+        raise InputError("mount_yaw_bias_deg", f"expected a finite angle in degrees, got {mount_yaw_bias_deg!r}")
+    mount = dataclasses.replace(MILLIAMPERE_LIDAR_MOUNT, yaw_deg=MILLIAMPERE_LIDAR_MOUNT.yaw_deg + float(mount_yaw_bias_deg))
+    lidar = lidar_for_scenario(scenario, config=config, mount=mount, range_model=lidar_mode)
     run_dir.mkdir(parents=True, exist_ok=True)
     yaml_path, _ = save_scenario(scenario, run_dir / RESOLVED_SCENARIO)
-    sensors = [GroundTruthSensor(scenario, ground_truth_rate_hz), LidarSensor(lidar)]
+    sensors = [GroundTruthSensor(scenario, ground_truth_rate_hz), LidarSensor(lidar, recorded_mount=MILLIAMPERE_LIDAR_MOUNT)]
     return simulate(
         sensors,
         run_dir,

@@ -13,6 +13,7 @@ from seatwin.recording import RecordingWriter, StaticTransform, TopicConfig, pos
 from seatwin.recording.messages import quaternion_from_matrix
 from seatwin.scenario import Scenario
 from seatwin.sensors.lidar import Lidar
+from seatwin.sensors.lidar_config import LidarMount
 
 
 class SimSensor(Protocol):
@@ -50,10 +51,16 @@ class GroundTruthSensor:
 
 
 class LidarSensor:
-    """A spinning lidar on the ownship: one PointCloud2 per sweep, stamped at the sweep start."""
+    """A spinning lidar on the ownship: one PointCloud2 per sweep, stamped at the sweep start.
 
-    def __init__(self, lidar: Lidar, phase_s: float = 0.0, name: str | None = None, carrier: str | None = None):
+    ``recorded_mount`` is the mount written to ``/tf_static`` and the manifest (default: the
+    lidar's own); a different one simulates a miscalibrated extrinsic the consumer never sees.
+    """
+
+    def __init__(self, lidar: Lidar, phase_s: float = 0.0, name: str | None = None, carrier: str | None = None,
+                 recorded_mount: LidarMount | None = None):
         self.lidar = lidar
+        self.recorded_mount = recorded_mount if recorded_mount is not None else lidar.mount
         self.name = name or "lidar"
         self.rate_hz = float(lidar.config.rate_hz)
         self.phase_s = float(phase_s)
@@ -63,12 +70,13 @@ class LidarSensor:
     def static_transforms(self, topics: TopicConfig) -> list[StaticTransform]:
         if self.carrier is None:
             return []
-        m = self.lidar.mount
+        m = self.recorded_mount
         return [StaticTransform(topics.body(self.carrier), self.name, (float(m.x), float(m.y), float(m.z)),
                                 quaternion_from_matrix(m.rotation()))]
 
     def parameters(self) -> dict[str, Any]:
         cfg = asdict(self.lidar.config)
+        extra = {} if self.recorded_mount == self.lidar.mount else {"mount_simulated": asdict(self.lidar.mount)}
         return {
             "kind": "lidar",
             "rate_hz": self.rate_hz,
@@ -76,8 +84,9 @@ class LidarSensor:
             "range_model": self.lidar.range_model_name,
             "seed": self.lidar.seed,
             "carrier": self.carrier,
-            "mount": asdict(self.lidar.mount),
+            "mount": asdict(self.recorded_mount),
             "config": cfg,
+            **extra,
         }
 
     def record(self, writer: RecordingWriter, t: float, frame: int) -> None:

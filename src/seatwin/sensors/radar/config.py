@@ -130,6 +130,11 @@ class RadarConfig(_Strict):
     antenna_height_m: float = Field(3.0, gt=0, description="above the water line")
     mount_x_m: float = Field(0.0, description="antenna position in the body frame, forward")
     mount_y_m: float = Field(0.0, description="antenna position in the body frame, starboard")
+    pose_at: Literal["scan", "beam"] = Field(
+        "scan",
+        description="where other vessels are when seen: at the scan stamp ('scan'), or when the beam passes "
+        "them ('beam': stamp + azimuth/2π × rotation period, spoke 0 at the bow)",
+    )
     detection: DetectionConfig = Field(default_factory=DetectionConfig)
     noise: NoiseConfig = Field(default_factory=NoiseConfig)
     clutter: ClutterConfig = Field(default_factory=ClutterConfig)

@@ -14,6 +14,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from seatwin.engine import RayHits
+from seatwin.errors import InputError
 from seatwin.sensors.radar.geometry import AntennaPose
 from seatwin.sensors.radar.model import LAND, VESSEL, RadarModel, RadarScan
 
@@ -23,10 +24,27 @@ VESSEL_LABELS = frozenset({"vessel", "moored_boat"})
 class SceneCaster:
     """A ray caster over a scene posed at one time (static world + vessels in body frames)."""
 
-    def __init__(self, scene: object, time: float, exclude: Sequence[str] = ()):
+    def __init__(self, scene: object, time: float, exclude: Sequence[str] = (), sweep: tuple[float, float, float, float] | None = None):
+        """``sweep = (antenna_north, antenna_east, heading, rotation_period)``: pose each vessel when the
+        beam (spoke 0 at the bow at ``time``, turning clockwise) passes it, not at ``time``."""
         self.scene = scene
         self.time = float(time)
+        self.sweep = sweep
         self.vessels = [n for n in scene.vessel_names if n not in exclude]  # type: ignore[attr-defined]
+
+    def pose_time(self, name: str) -> float:
+        """When vessel ``name`` is seen: the scan time, or the time the beam passes it."""
+        if self.sweep is None:
+            return self.time
+        n0, e0, heading, period = self.sweep
+        p = self.scene.pose(name, self.time)  # type: ignore[attr-defined]
+        frac = ((np.arctan2(float(p.east) - e0, float(p.north) - n0) - heading) % (2 * np.pi)) / (2 * np.pi)
+        t = self.time + frac * period
+        try:
+            self.scene.pose(name, t)  # type: ignore[attr-defined]
+        except InputError:  # past the end of the trajectory: the last pose we have is the scan time's
+            return self.time
+        return t
 
     def _radius(self, name: str) -> float:
         """Radius of a sphere about the body origin holding the whole vessel mesh (+1 m)."""
@@ -44,7 +62,7 @@ class SceneCaster:
             rng, oid, nrm = np.full(n, np.inf, np.float32), np.full(n, -1, np.int32), np.zeros((n, 3), np.float32)
         one_origin = n > 0 and bool((o == o[0]).all())
         for name in self.vessels:
-            p = self.scene.pose(name, self.time)  # type: ignore[attr-defined]
+            p = self.scene.pose(name, self.pose_time(name))  # type: ignore[attr-defined]
             c, s = float(np.cos(p.heading)), float(np.sin(p.heading))
             rot = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])  # body → world
             t = np.array([float(p.north), float(p.east), 0.0])
@@ -89,8 +107,10 @@ def antenna_pose(model: RadarModel, scene: object, ownship: str, time: float) ->
 
 def scan_scene(model: RadarModel, scene: object, ownship: str, frame: int, time: float, with_spokes: bool | None = None) -> RadarScan:
     """One rotation of ``model`` on ``ownship`` in ``scene`` at ``time`` (frame index ``frame``)."""
-    caster = SceneCaster(scene, time, exclude=(ownship,))
-    return model.scan(frame, time, antenna_pose(model, scene, ownship, time), caster, object_kinds(scene), with_spokes=with_spokes)
+    ant = antenna_pose(model, scene, ownship, time)
+    sweep = (ant.north, ant.east, ant.heading, model.config.rotation_period_s) if model.config.pose_at == "beam" else None
+    caster = SceneCaster(scene, time, exclude=(ownship,), sweep=sweep)
+    return model.scan(frame, time, ant, caster, object_kinds(scene), with_spokes=with_spokes)
 
 
 def scan_times(start: float, end: float, rotation_period: float) -> np.ndarray:

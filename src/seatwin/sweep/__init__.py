@@ -1,0 +1,15 @@
+"""Fidelity sweep: does AHED rise when the sensor model is deliberately made worse?
+
+A reference synthetic dataset is compared (through the tracker, thesis 5.2) with copies made
+by degraded lidar models at increasing strength; AHED should rank with the strength.
+"""
+
+from seatwin.sweep.degradations import DEGRADATIONS, Degradation, degradation, parse_kinds
+from seatwin.sweep.figure import plot_sweep
+from seatwin.sweep.results import SweepResult, SweepRow, spearman_by_kind, summarise, write_results
+from seatwin.sweep.runner import SweepSettings, run_sweep
+
+__all__ = [
+    "DEGRADATIONS", "Degradation", "SweepResult", "SweepRow", "SweepSettings", "degradation", "parse_kinds", "plot_sweep",
+    "run_sweep", "spearman_by_kind", "summarise", "write_results",
+]
