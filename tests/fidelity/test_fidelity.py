@@ -89,3 +89,11 @@ def test_calibrate_bias_needs_a_fit_and_sets_the_tracker_bias(toy_mat, tmp_path,
     j = json.loads((out / "fidelity.json").read_text())
     assert j["agent"] == "gnn" and j["fit_on"] == "all"
     assert j["tracker_bearing_bias_deg"] == pytest.approx(j["models"]["fitted"]["radar"]["noise"]["bearing_bias_deg"])
+
+
+def test_fidelity_reruns_are_identical(toy_mat, tmp_path):
+    args = ["fidelity", "joyride", str(toy_mat), "--fit-on", "first-half", "--seeds", "1", "--agents", "gnn",
+            "--boot", "20", "--fit-boot", "3", "--no-html", "--seed", "4"]
+    assert run([*args, "--out", str(tmp_path / "a")]) == 0
+    assert run([*args, "--out", str(tmp_path / "b")]) == 0
+    assert (tmp_path / "a" / "fidelity.json").read_text() == (tmp_path / "b" / "fidelity.json").read_text()

@@ -92,6 +92,8 @@ def register(app: typer.Typer) -> None:
         for key, unit in (("range_bias_m", "m"), ("range_sigma_m", "m"), ("bearing_bias_deg", "°"), ("bearing_sigma_deg", "°"),
                           ("detection_rate", ""), ("snr_ref_db", "dB"), ("pd_max", ""), ("clutter_density_per_km2", "/km²/scan")):
             typer.echo(line(key, unit))
+        for note in res.report.get("notes", []):
+            typer.echo(f"  note: {note}")
 
     @group.command("simulate", help=_SIM_HELP)
     def simulate_cmd(

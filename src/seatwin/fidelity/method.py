@@ -7,7 +7,8 @@
    only) or on all of it (``"all"``, for reference).
 3. The same tracker with the same tuning runs on the real and on each synthetic recording
    (one per seed); two agents: JIPDA (:mod:`seatwin.tracking`) and GNN
-   (:mod:`seatwin.tracking.gnn`), both with the same EKF and tuning.
+   (:mod:`seatwin.tracking.gnn`), both with the same EKF and tuning (``calibrate_bias``: the tuning's
+   radar bearing bias set to the fitted one, for both datasets).
 4. :func:`seatwin.evaluation.compare` gives HED (5.30), COVDIFF (5.31) per common instant;
    AHED (5.34) is averaged over the evaluation window, with a circular block bootstrap 95 %
    interval (blocks of consecutive instants, pooled over seeds) and its spread over seeds.
@@ -15,8 +16,8 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import Any, Literal
+from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -24,13 +25,14 @@ from numpy.typing import NDArray
 from seatwin.errors import InputError
 from seatwin.fidelity.joyride import TARGET, TARGET_SIZE, JoyrideData, heading_from_velocity, observations, replica_scene, simulate_replica
 
-FitOn = Literal["none", "first-half", "all"]
 FIT_ON = ("none", "first-half", "all")
 AGENTS = ("jipda", "gnn")
 
 
 @dataclass
 class FidelityOptions:
+    """Every choice of a fidelity run (the CLI's options)."""
+
     tuning: str = "joyride"
     fit_on: str = "none"
     seeds: int = 5
@@ -110,13 +112,6 @@ def block_bootstrap_ci(values: list[NDArray[np.float64]], n_boot: int, block: in
         means[b] = tot / cnt
     a = (1 - level) / 2
     return (float(np.quantile(means, a)), float(np.quantile(means, 1 - a)))
-
-
-@dataclass
-class SeedRun:
-    seed: int
-    synthetic_plots: list[NDArray[np.float64]]
-    per_agent: dict[str, dict[str, Any]] = field(default_factory=dict)
 
 
 def _window_stats(series, t0: float, t1: float) -> dict[str, Any]:  # noqa: ANN001
@@ -310,7 +305,7 @@ def run_fidelity(path: str, opts: FidelityOptions) -> dict[str, Any]:
         "assumptions": {
             "heading": "from velocity (the dataset has none); held below 0.5 m/s",
             "target_size_m": list(TARGET_SIZE),
-            "scan_posing": "world posed once per scan at its stamp",
+            "scan_posing": f"radar pose_at={base.pose_at!r} ('scan': world posed once per scan at its stamp)",
         },
     }
     result["radar_fit"] = fit_report
@@ -350,7 +345,7 @@ def fidelity_json(result: dict[str, Any]) -> dict[str, Any]:
     }
     for label, m in result["models"].items():
         summary["models"][label] = {
-            "agents": {a: {k: v for k, v in d.items() if k != "per_seed"} | {"per_seed": d["per_seed"]} for a, d in m["agents"].items()},
+            "agents": {a: dict(d) for a, d in m["agents"].items()},
             "synthetic_statistics_mean": {k: float(np.mean([s[k] for s in m["synthetic_statistics"]])) for k in m["synthetic_statistics"][0]},
             "radar": m["radar"],
         }

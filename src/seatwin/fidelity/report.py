@@ -139,6 +139,7 @@ def render_markdown(summary: dict[str, Any]) -> str:
                   "| parameter | estimate | std. error | 95 % CI |", "|---|---:|---:|---|"]
         for k, v in fit["estimates"].items():
             lines.append(f"| {k} | {_f(v['estimate'], '.4g')} | {_f(v['se'], '.3g')} | {_ci(v['ci95']) if v['ci95'][0] is not None else '–'} |")
+        lines += [f"\nNote: {n}" for n in fit.get("notes", [])]
         lines += ["", "Detection rate against range (Wilson 95 % interval) and the fitted model:", "",
                   "| range [m] | scans | rate | 95 % CI | model |", "|---|---:|---:|---|---:|"]
         for row in fit["detection_vs_range"]:
@@ -152,7 +153,9 @@ def render_markdown(summary: dict[str, Any]) -> str:
               "circular block bootstrap (blocks of up to 10 consecutive instants, at most a third of a series, pooled over seeds).",
               "* Floor: the same comparison between two synthetic recordings of the same model (seeds s, s+1).",
               "* Headings from velocity (the dataset has none); target box size assumed; world posed once per scan.",
-              "* `n_common`, `n_only_real`, `n_only_synthetic` are means over seeds.", ""]
+              "* `n_common`, `n_only_real`, `n_only_synthetic` are means over seeds.",
+              "* `index.html` (the comparison report) shows seed 0 of each model over the whole recording; the "
+              "evaluation window's figures are the ones above.", ""]
     return "\n".join(lines)
 
 

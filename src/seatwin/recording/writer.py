@@ -35,6 +35,7 @@ from seatwin.errors import InputError
 from seatwin.geo import GeodeticOrigin
 from seatwin.recording import messages as M
 from seatwin.recording.config import TopicConfig, check_format
+from seatwin.recording.fast_cdr import NAV_SAT_FIX, ODOMETRY, POSE_STAMPED, TF_MESSAGE, GroundTruthEncoder
 from seatwin.recording.manifest import MANIFEST_NAME, MANIFEST_VERSION, write_manifest
 from seatwin.recording.pointcloud import RADAR_LAYOUT, VLP16_LAYOUT, Layout, pack
 
@@ -123,6 +124,7 @@ class RecordingWriter:
         """Seconds spent in this writer's calls (``total_s``; recording_share = total_s / wall time),
         of which serialising and handing bytes to the bag storage."""
         self._depth = 0
+        self._gt_encoder: GroundTruthEncoder | None = None
 
         for existing in (self.bag, self.run_dir / MANIFEST_NAME):
             if existing.exists():
@@ -222,13 +224,25 @@ class RecordingWriter:
     @_timed
     def write_raw(self, topic: str, msgtype: str, t: float, data: bytes | memoryview) -> None:
         """Write an already serialised message (CDR for rosbag2, ROS 1 for .bag)."""
+        self._write_batch(t, ((topic, msgtype, data),))
+
+    def _write_batch(self, t: float, items: Sequence[tuple[str, str, bytes | memoryview]]) -> None:
+        """Write serialised messages all stamped ``t`` (one stamp conversion and one flush check)."""
         if self._closed:
             raise RecordingError(f"{self.bag}: recording is closed")
         t0 = _time.perf_counter()
         try:
-            conn = self._connection(topic, msgtype)
-            self._w.write(conn, M.stamp_ns(t), data)
-            self.counts[topic] += 1
+            stamp = M.stamp_ns(t)
+            w, conns, types, counts = self._w, self._conns, self.types, self.counts
+            mcap = self.format == "mcap"
+            for topic, msgtype, data in items:
+                conn = conns.get(topic)
+                if conn is None or types[topic] != msgtype:
+                    conn = self._connection(topic, msgtype)
+                w.write(conn, stamp, data)
+                counts[topic] += 1
+                if mcap and not w.storage.chunk.msgs:  # rosbags closed a full chunk
+                    w.storage.bio.flush()
             self._t0 = t if self._t0 is None else min(self._t0, t)
             self._t1 = t if self._t1 is None else max(self._t1, t)
             if self._last_flush is None:
@@ -236,8 +250,6 @@ class RecordingWriter:
             elif t - self._last_flush >= self.flush_interval_s or t0 - self._last_flush_wall >= self.flush_wall_s:
                 self.flush()
                 self._last_flush, self._last_flush_wall = t, t0
-            elif self.format == "mcap" and not self._w.storage.chunk.msgs:  # rosbags closed a full chunk
-                self._w.storage.bio.flush()
         except OSError as exc:
             self._fail(exc)
         finally:
@@ -333,10 +345,18 @@ class RecordingWriter:
 
     @_timed
     def write_ground_truth(self, t: float, vessels: Sequence[M.VesselPose]) -> None:
-        """Ground truth of every vessel at ``t``: PoseStamped + Odometry each, NavSatFix of the ownship, one /tf."""
+        """Ground truth of every vessel at ``t``: PoseStamped + Odometry each, NavSatFix of the ownship, one /tf.
+
+        Serialised directly (:mod:`seatwin.recording.fast_cdr`, byte-identical to the typestore path)."""
         if not self._static_written:
             self.write_static_transforms(t)
         tp = self.topics
+        world = tp.world_frame
+        enc = self._gt_encoder
+        if enc is None:
+            enc = self._gt_encoder = GroundTruthEncoder(self.format)
+        t0 = _time.perf_counter()
+        items: list[tuple[str, str, bytes]] = []
         tfs = []
         for v in vessels:
             names = self._vessel_names.get(v.name)
@@ -345,17 +365,18 @@ class RecordingWriter:
                     tp.body(v.name), tp.topic("pose", vessel=v.name), tp.topic("odom", vessel=v.name), tp.topic("fix", vessel=v.name))
                 self.vessels[v.name] = "ownship" if v.ownship else "target"
             body, pose_topic, odom_topic, fix_topic = names
-            self.write(pose_topic, t, M.pose_stamped(self.store, t, tp.world_frame, v))
-            self.write(odom_topic, t, M.odometry(self.store, t, tp.world_frame, body, v))
+            items.append((pose_topic, POSE_STAMPED, enc.pose_stamped(t, world, v)))
+            items.append((odom_topic, ODOMETRY, enc.odometry(t, world, body, v)))
             if v.ownship:
                 if self.origin is not None:
-                    self.write(fix_topic, t, M.nav_sat_fix(self.store, t, body, v, self.origin))
+                    items.append((fix_topic, NAV_SAT_FIX, enc.nav_sat_fix(t, body, v, self.origin)))
                 elif not any("NavSatFix" in n for n in self.notes):
                     self.notes.append("no geodetic origin given: the ownship's NavSatFix was not recorded")
-            tfs.append(M.transform_stamped(self.store, t, tp.world_frame, body, (v.north, v.east, v.down),
-                                           M.quaternion_yaw(v.heading)))
+            tfs.append((world, body, (v.north, v.east, v.down), M.quaternion_yaw(v.heading)))
         if tfs:
-            self.write(tp.tf, t, M.tf_message(self.store, tfs))
+            items.append((tp.tf, TF_MESSAGE, enc.tf_message(t, tfs)))
+        self.timing["serialize_s"] += _time.perf_counter() - t0
+        self._write_batch(t, items)
 
     # ------------------------------------------------------------------ manifest and closing
     def _write_manifest(self, completed: bool = False) -> None:

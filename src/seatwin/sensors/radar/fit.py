@@ -72,6 +72,10 @@ class RadarObservations:
         return RadarObservations(self.time[i], [self.plots[k] for k in i], self.antenna[i], self.truth[i], self.target_area_m2[i], self.source)
 
 
+SNR_DB_BOUNDS = (-30.0, 80.0)
+"""Search bounds of the fitted reference SNR [dB]."""
+
+
 def _wrap(a: NDArray[np.float64]) -> NDArray[np.float64]:
     return (a + np.pi) % (2 * np.pi) - np.pi
 
@@ -166,7 +170,7 @@ def fit_pd(range_m: NDArray[np.float64], area: NDArray[np.float64], detected: ND
         if best is None or res.fun < best.fun:
             best = res
     th = best.x
-    th[0] = float(np.clip(th[0], -30.0, 80.0))
+    th[0] = float(np.clip(th[0], *SNR_DB_BOUNDS))
     th[1] = float(np.clip(th[1], -10.0, 10.0))
     return cfg(th)
 
@@ -315,6 +319,12 @@ def fit_radar(
         "max_range_m": base.max_range_m,
         "estimates": {k: _stat(np.asarray(v, float), est[k]) for k, v in boots.items() if not k.startswith("pd_bin_")},
     }
+    notes = []
+    ci = report["estimates"]["snr_ref_db"]["ci95"]
+    if ci[0] == ci[0] and (ci[1] >= SNR_DB_BOUNDS[1] - 0.1 or ci[0] <= SNR_DB_BOUNDS[0] + 0.1):
+        notes.append("snr_ref_db is weakly identified (its interval reaches the search bound): the detection "
+                     "rate hardly changes over the ranges seen, so pd_max carries the detection model there")
+    report["notes"] = notes
     yy = assoc.detected[np.isfinite(assoc.range_m)]
     rr = assoc.range_m[np.isfinite(assoc.range_m)]
     table = []

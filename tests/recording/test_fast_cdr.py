@@ -1,0 +1,84 @@
+"""The direct ground-truth serialiser is byte-identical to rosbags' generic one (CDR and ROS 1)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from seatwin.recording import RecordingWriter, VesselPose, open_bag
+from seatwin.recording import messages as M
+from seatwin.recording.fast_cdr import GroundTruthEncoder
+from seatwin.recording.writer import poses_from_scenario
+from seatwin.scenario.builtin import builtin_scenario
+
+from recording_helpers import ORIGIN  # noqa: E402  (conftest puts the folder on sys.path)
+
+NAMES = ["a", "ab", "abc", "abcd", "abcde", "milliAmpere", "Havfruen_2", "bøye"]  # lengths 1..11, non-ASCII
+TIMES = [1_600_000_000.123456789, 0.5, 12.0, 1_700_000_000.9999999999]
+VALUES = [(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), (-1234.5, 1e7, -2.1, -3.5, 4.25, -0.02), (3e5, -7e-9, 7.0, 1e3, -1e-3, 5.0)]
+
+
+def _serializer(fmt: str):
+    store = M.typestore(fmt)
+    return store, (store.serialize_ros1 if fmt == "ros1" else store.serialize_cdr)
+
+
+@pytest.mark.parametrize("fmt", ["mcap", "ros1"])
+def test_messages_byte_exact(fmt: str) -> None:
+    store, ser = _serializer(fmt)
+    enc = GroundTruthEncoder(fmt)
+    for i, name in enumerate(NAMES):
+        world, body = "w" * (i + 1), f"{name}/base_link"
+        for t in TIMES:
+            for north, east, heading, vn, ve, r in VALUES:
+                v = VesselPose(name, north, east, heading, down=-0.5 * i, v_north=vn, v_east=ve, yaw_rate=r, ownship=True)
+                assert enc.pose_stamped(t, world, v) == bytes(ser(M.pose_stamped(store, t, world, v), "geometry_msgs/msg/PoseStamped"))
+                assert enc.odometry(t, world, body, v) == bytes(ser(M.odometry(store, t, world, body, v), "nav_msgs/msg/Odometry"))
+                assert enc.nav_sat_fix(t, body, v, ORIGIN) == bytes(
+                    ser(M.nav_sat_fix(store, t, body, v, ORIGIN), "sensor_msgs/msg/NavSatFix"))
+                tfs = [(world, body, (north, east, v.down), M.quaternion_yaw(heading)),
+                       (NAMES[-1 - i], name, (east, -north, 1e9), (0.1, -0.2, 0.3, 0.9))][: 1 + i % 2]
+                generic = M.tf_message(store, [M.transform_stamped(store, t, *x) for x in tfs])
+                assert enc.tf_message(t, tfs) == bytes(ser(generic, "tf2_msgs/msg/TFMessage"))
+    assert enc.tf_message(1.0, []) == bytes(ser(M.tf_message(store, []), "tf2_msgs/msg/TFMessage"))
+
+
+def _generic_ground_truth(w: RecordingWriter, t: float, vessels: list[VesselPose]) -> None:
+    """The former typestore path of :meth:`RecordingWriter.write_ground_truth` (reference)."""
+    if not w._static_written:
+        w.write_static_transforms(t)
+    tp, tfs = w.topics, []
+    for v in vessels:
+        body = tp.body(v.name)
+        w.write(tp.topic("pose", vessel=v.name), t, M.pose_stamped(w.store, t, tp.world_frame, v))
+        w.write(tp.topic("odom", vessel=v.name), t, M.odometry(w.store, t, tp.world_frame, body, v))
+        if v.ownship and w.origin is not None:
+            w.write(tp.topic("fix", vessel=v.name), t, M.nav_sat_fix(w.store, t, body, v, w.origin))
+        tfs.append(M.transform_stamped(w.store, t, tp.world_frame, body, (v.north, v.east, v.down), M.quaternion_yaw(v.heading)))
+    w.write(tp.tf, t, M.tf_message(w.store, tfs))
+
+
+def test_simulated_ground_truth_reads_back_identically(tmp_path: Path, fmt: str) -> None:
+    sc = builtin_scenario("ferry_crossing")
+    steps = [(sc.start + 0.1 * k, poses_from_scenario(sc, sc.start + 0.1 * k)) for k in range(25)]
+    raw = {}
+    for kind in ("fast", "generic"):
+        with RecordingWriter(tmp_path / kind, fmt, origin=ORIGIN, flush_interval_s=0.5) as w:
+            for t, vessels in steps:
+                if kind == "fast":
+                    w.write_ground_truth(t, vessels)
+                else:
+                    _generic_ground_truth(w, t, vessels)
+        with open_bag(tmp_path / kind) as rec:
+            raw[kind] = sorted((topic, ts, msgtype, bytes(data)) for topic, msgtype, ts, data in rec.raw_messages())
+        assert w.counts[w.topics.tf] == len(steps)
+    assert raw["fast"] == raw["generic"]
+    assert len({r[0] for r in raw["fast"]}) == 2 * len(sc.vessels) + 3  # pose+odom each, fix, /tf, /tf_static
+    with open_bag(tmp_path / "fast") as rec:
+        truth = rec.ground_truth()
+    assert set(truth) == {v.name for v in steps[0][1]}
+    for v in steps[-1][1]:
+        vt = truth[v.name]
+        assert len(vt.time) == len(steps)
+        assert (vt.north[-1], vt.east[-1], vt.heading[-1]) == pytest.approx((v.north, v.east, v.heading), abs=1e-12)
