@@ -6,7 +6,7 @@ from seatwin.recording import RecordingWriter, VesselPose
 from seatwin.rng import frame_rng
 
 run_dir, fmt = sys.argv[1], sys.argv[2]
-w = RecordingWriter(run_dir, fmt, flush_interval_s=0.5, seed=1)
+w = RecordingWriter(run_dir, fmt, flush_interval_s=0.5, manifest_wall_s=0.0, seed=1)
 n = 2000
 rng = frame_rng(0, "test/killed-writer", 0)
 k = 0

@@ -12,7 +12,8 @@ Data reach the operating system at least every ``flush_interval_s`` of recorded 
 ``flush_wall_s`` of wall time, whichever comes first (MCAP: the open chunk is closed and the file
 flushed; SQLite3: a commit; ROS 1: the open chunk is written), so a run killed with SIGKILL leaves
 a bag readable up to its last flush (see :mod:`seatwin.recording.reader`). ``fsync=True`` also
-forces them to the disk (for power loss; slower).
+forces them to the disk (for power loss; slower). The manifest's counts are refreshed at a flush
+at most every ``manifest_wall_s`` of wall time; they never exceed what the bag holds.
 """
 
 from __future__ import annotations
@@ -93,6 +94,7 @@ class RecordingWriter:
         metadata: dict[str, Any] | None = None,
         flush_interval_s: float = 1.0,
         flush_wall_s: float = 2.0,
+        manifest_wall_s: float = 1.0,
         row_step_zero: bool = False,
         fsync: bool = False,
     ) -> None:
@@ -104,6 +106,8 @@ class RecordingWriter:
         self.flush_interval_s = float(flush_interval_s)
         self.flush_wall_s = float(flush_wall_s)
         self._last_flush_wall = _time.perf_counter()
+        self.manifest_wall_s = float(manifest_wall_s)
+        self._last_manifest_wall = float("-inf")
         self.row_step_zero = row_step_zero
         self.fsync = fsync
         self.counts: dict[str, int] = {}
@@ -260,7 +264,13 @@ class RecordingWriter:
         """Flush the bag and refresh the manifest (``completed`` stays false until :meth:`close`)."""
         try:
             self._flush_storage()
-            self._write_manifest()
+            # The manifest (a small file rewritten and renamed) is refreshed at most once per
+            # ``manifest_wall_s`` of wall time: at high real-time factors rewriting it at every
+            # flush cost more than recording the data. It never claims more than was flushed.
+            now = _time.perf_counter()
+            if now - self._last_manifest_wall >= self.manifest_wall_s:
+                self._write_manifest()
+                self._last_manifest_wall = now
         except OSError as exc:
             self._fail(exc)
 
