@@ -1,4 +1,4 @@
-"""Validation of the tracker on the real joyride radar dataset (docs/validation/tracking.md).
+"""Validation of the tracker on the real joyride radar dataset (docs/validation.md, tracking).
 
     .venv/bin/python benchmarks/tracking_joyride.py [../shared/data/joyride/joyride.mat]
 

@@ -18,3 +18,15 @@ class InputError(ValueError):
         self.detail = message
         parts = [p for p in (self.source, where) if p]
         super().__init__(f"{': '.join(parts)}: {message}" if parts else message)
+
+
+def parse_finite(text: str, source: str | PathLike[str] | None, field: str, line: int | None = None) -> float:
+    """``text`` as a finite float, or an :class:`InputError` naming the source, line and field."""
+    where = f"line {line}" if line is not None else None
+    try:
+        value = float(text)
+    except ValueError:
+        raise InputError(source, f"expected a number for {field}, got {text!r}", where=where) from None
+    if value != value or value in (float("inf"), float("-inf")):
+        raise InputError(source, f"expected a finite number for {field}, got {text!r}", where=where)
+    return value

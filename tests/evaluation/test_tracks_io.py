@@ -41,13 +41,13 @@ def _row(**over: str) -> str:
 
 
 @pytest.mark.parametrize(("row", "needle"), [
-    (_row(north="abc"), "expected a number in north"),
+    (_row(north="abc"), "expected a number for north"),
     (_row(P01="0.5"), "not symmetric"),
     (_row(P22="0"), "diagonal must be positive"),
     (_row(P01="2", P10="2"), "not positive semi-definite"),
     (_row(confirmed="2"), "confirmed must be 0 or 1"),
     (_row(existence="1.5"), "existence must lie in [0, 1]"),
-    (_row(time="nan"), "time must be finite"),
+    (_row(time="nan"), "expected a finite number for time"),
     (_row(track_id="x"), "integer track_id"),
     (_row(track_id="-5"), "track_id must be >= 0"),
     ("1.0,-1,0.5" + "," * (len(COLUMNS) - 3), "must leave existence empty"),

@@ -88,7 +88,7 @@ def test_fit_real_joyride(shared_data):
 
     res = fit_radar(observations(load_joyride(shared_data / "joyride" / "joyride.mat")), RadarConfig(), n_boot=10)
     e = res.report["estimates"]
-    # Measured on the real data (docs/validation/radar.md): a −1.8° bearing bias, σ_θ ≈ 1.8°, Pd ≈ 0.76.
+    # Measured on the real data (docs/validation.md, radar): a −1.8° bearing bias, σ_θ ≈ 1.8°, Pd ≈ 0.76.
     assert e["bearing_bias_deg"]["estimate"] == pytest.approx(-1.8, abs=0.3)
     assert e["bearing_sigma_deg"]["estimate"] == pytest.approx(1.8, abs=0.4)
     assert e["detection_rate"]["estimate"] == pytest.approx(0.76, abs=0.05)

@@ -14,7 +14,6 @@ scan time without a track row.
 from __future__ import annotations
 
 import csv
-import math
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -22,7 +21,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from seatwin.errors import InputError
+from seatwin.errors import InputError, parse_finite
 
 STATE_NAMES: tuple[str, ...] = ("north", "v_north", "east", "v_east")
 """State order of (5.32): the thesis's ``[Pos_x, Vel_x, Pos_y, Vel_y]`` with x north, y east."""
@@ -176,14 +175,7 @@ def read_tracks(path: str | os.PathLike[str]) -> Tracks:
                 raise InputError(path, f"expected {len(header)} fields, got {len(row)}", where=f"line {line}")
 
             def number(name: str) -> float:
-                text = row[col[name]].strip()
-                try:
-                    value = float(text)
-                except ValueError:
-                    raise InputError(path, f"expected a number in {name}, got {text!r}", where=f"line {line}") from None
-                if not math.isfinite(value):
-                    raise InputError(path, f"{name} must be finite, got {text!r}", where=f"line {line}")
-                return value
+                return parse_finite(row[col[name]].strip(), path, name, line)
 
             t = number("time")
             tid_text = row[col["track_id"]].strip()

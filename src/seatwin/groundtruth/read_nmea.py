@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from seatwin.errors import InputError
+from seatwin.errors import InputError, parse_finite
 from seatwin.groundtruth.log import AntennaLog
 
 _SENTENCE = re.compile(r"^\$([A-Z]{2})([A-Z]{3}),")
@@ -83,13 +83,7 @@ def _angle(text: str, hemi: str, degree_digits: int, name: str, path: Path, line
 def _float(text: str, name: str, path: Path, line_no: int, default: float | None = None) -> float:
     if text == "" and default is not None:
         return default
-    try:
-        v = float(text)
-    except ValueError:
-        raise InputError(path, f"expected a number for {name}, got {text!r}", where=f"line {line_no}") from None
-    if not np.isfinite(v):
-        raise InputError(path, f"expected a finite number for {name}, got {text!r}", where=f"line {line_no}")
-    return v
+    return parse_finite(text, path, name, line_no)
 
 
 def _date(day: int, month: int, year: int, path: Path, line_no: int) -> float:

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from seatwin.errors import InputError
+from seatwin.errors import InputError, parse_finite
 from seatwin.groundtruth.gpstime import GPS_EPOCH_POSIX, gps_week_to_posixlike, gpst_to_utc
 from seatwin.groundtruth.log import AntennaLog
 
@@ -39,13 +39,7 @@ def _header_layout(header: str, path: Path, line_no: int) -> tuple[str, bool]:
 
 
 def _number(tok: str, name: str, path: Path, line_no: int) -> float:
-    try:
-        v = float(tok)
-    except ValueError:
-        raise InputError(path, f"expected a number for {name}, got {tok!r}", where=f"line {line_no}") from None
-    if not np.isfinite(v):
-        raise InputError(path, f"expected a finite number for {name}, got {tok!r}", where=f"line {line_no}")
-    return v
+    return parse_finite(tok, path, name, line_no)
 
 
 def _time(tok0: str, tok1: str, path: Path, line_no: int) -> float:

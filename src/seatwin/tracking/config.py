@@ -130,7 +130,7 @@ PRESETS: dict[str, dict[str, Any]] = {
     "real": _thesis_preset("real", 0.2, 150.0, 0.04, 0.0026),
     # Real joyride radar (Telemetron, X-band navigation radar, ~2.5 s per rotation): values from
     # radar characteristics and the target class, not fitted to the dataset's ground truth
-    # (reasoning in docs/validation/tracking.md).
+    # (reasoning in docs/validation.md, tracking).
     "joyride": {
         "name": "joyride",
         # Bar-Shalom, Li & Kirubarajan (2001) §6.3.2: q ≈ σ_a²·T with σ_a ≈ a_max/2; a small planing

@@ -3,7 +3,7 @@
 Static objects are committed once into one ray caster in the world frame (NED). Each
 vessel keeps its own caster in its *body* frame: a sensor moving through a sweep
 transforms each ray into a vessel's frame at that ray's own time instead of rebuilding
-geometry per pose (see ``docs/notes/lidar-architecture.md``). Rasterising back ends get
+geometry per pose (see ``docs/architecture/lidar.md``). Rasterising back ends get
 world-frame triangles of the scene posed at one time from :meth:`Scene.posed_meshes`.
 
 Object ids: static objects first (0 … S−1), then the vessels in scenario order.
