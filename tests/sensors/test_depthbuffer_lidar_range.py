@@ -86,3 +86,18 @@ def test_empty_batch(scene: Scene) -> None:
     lid = Lidar(scene, VLP16.with_(drop_probability=1.0), LidarMount(z=-3.0))
     res = depthbuffer_ranges(scene, lid.beams(1.0, 0))
     assert len(res.range) == 0 and res.sensor_points.shape == (0, 3)
+
+
+def test_lidar_sweep_keeps_the_depth_buffers_points(scene: Scene) -> None:
+    """The pipeline places depth-buffer points where the pixel ray put them (its direction
+    error included), not along the beam at the back-projected range."""
+    cfg = VLP16.with_(drop_probability=0.0, range_accuracy=0.0, columns=900)
+    mount = LidarMount(z=-3.0)
+    lid = Lidar(scene, cfg, mount, range_model="depthbuffer", self_returns=False)
+    sweep = lid.sweep(1.0, 0)
+    res = depthbuffer_ranges(scene, lid.beams(1.0, 0))
+    ok = np.flatnonzero(res.object_id >= 0)
+    assert len(sweep) == ok.size > 500
+    np.testing.assert_allclose(sweep.xyz, res.sensor_points[ok], atol=1e-4)
+    along_beam = res.range[ok, None] * lid.d_sensor[ok]
+    assert np.abs(along_beam - res.sensor_points[ok]).max() > 1e-3
