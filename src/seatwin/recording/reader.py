@@ -412,12 +412,9 @@ def truth_from_scenario_file(path: Path) -> dict[str, VesselTruth]:
         last = max(trajs) if trajs else None
         vessels = [(f"V{n}", tr, n == last) for n, tr in trajs.items()]
     else:
-        import seatwin.scenario as S
+        from seatwin.scenario.load import load_scenario
 
-        loader = next((getattr(S, n) for n in ("load_scenario", "read_scenario", "load") if hasattr(S, n)), None)
-        if loader is None:
-            raise InputError(path, "no scenario reader available for this file type (expected a Gemini .csv)")
-        sc = loader(path)
+        sc = load_scenario(path)
         vessels = [(v.name, v.trajectory, getattr(v.role, "value", v.role) == "ownship") for v in sc.vessels]
     out = {}
     for name, tr, own in vessels:

@@ -65,7 +65,6 @@ class LidarSensor:
         self.rate_hz = float(lidar.config.rate_hz)
         self.phase_s = float(phase_s)
         self.carrier = carrier if carrier is not None else lidar.platform
-        self.sweep_period = 1.0 / self.rate_hz
 
     def static_transforms(self, topics: TopicConfig) -> list[StaticTransform]:
         if self.carrier is None:
