@@ -13,7 +13,8 @@ from collections.abc import Sequence
 import typer
 
 from seatwin import __version__
-from seatwin.errors import InputError
+from seatwin.cli.flags import flag_for
+from seatwin.errors import InputError, ParameterError
 
 app = typer.Typer(
     name="seatwin",
@@ -64,6 +65,9 @@ def run(argv: Sequence[str] | None = None) -> int:
     """Run the CLI with ``argv``; return the exit status (used by ``main`` and by tests)."""
     try:
         app(args=list(argv) if argv is not None else None, prog_name="seatwin", standalone_mode=False)
+    except ParameterError as exc:
+        typer.echo(f"seatwin: error: {exc.render(flag_for(exc.param))}", err=True)
+        return 2
     except InputError as exc:
         typer.echo(f"seatwin: error: {exc}", err=True)
         return 2
@@ -75,13 +79,9 @@ def run(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         typer.echo("seatwin: interrupted", err=True)
         return 130
-    except Exception as exc:  # click's usage errors
-        import click
-
-        if isinstance(exc, click.ClickException):
-            exc.show()
-            return exc.exit_code
-        raise
+    except typer.TyperException as exc:  # usage errors: unknown verb or option, bad value, missing option
+        typer.echo(f"seatwin: error: {exc.format_message()}", err=True)
+        return 2 if exc.exit_code in (1, 2) else exc.exit_code
     return 0
 
 

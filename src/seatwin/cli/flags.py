@@ -1,0 +1,25 @@
+"""Library parameter names → the command-line flags that set them, for error messages.
+
+Library functions raise :class:`seatwin.errors.ParameterError` naming their Python parameter
+(``ray_drop``); the CLI prints the flag a user typed (``--ray-drop``). The default is the
+parameter with ``_`` → ``-``; :data:`FLAG_OF` lists the exceptions.
+"""
+
+from __future__ import annotations
+
+FLAG_OF: dict[str, str] = {
+    "fmt": "--format",
+    "start_offset": "--start",
+    "harbour_spec": "--harbour",
+    "map_spec": "--map",
+    "merge_distance": "--radar-merge",
+    "radar_kind": "--radar-model",
+    "eps": "--cluster-eps",
+}
+
+
+def flag_for(param: str) -> str:
+    """The flag of library parameter ``param`` (``ray_drop`` → ``--ray-drop``); a flag is returned as is."""
+    if param.startswith("-"):
+        return param
+    return FLAG_OF.get(param, "--" + param.replace("_", "-"))
