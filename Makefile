@@ -8,7 +8,7 @@ STAMP  := $(VENV)/.installed
 # Debian packages: Mesa EGL for headless rasterising, Chromium to check the HTML report.
 DEB_PACKAGES := libegl1 libgl1-mesa-dri libgl1 chromium
 
-.PHONY: demo test deb venv clean
+.PHONY: demo test test-fast lint deb venv clean
 
 $(STAMP): pyproject.toml
 	@$(MAKE) --no-print-directory deb
@@ -30,8 +30,22 @@ demo: $(STAMP)
 	rm -rf runs/demo
 	$(VENV)/bin/seatwin demo --out runs/demo
 
+# The whole suite, after lint. Tests run even when lint fails; the target fails if either
+# does. pytest's exit status 5 (no test collected) is reported as such.
 test: $(STAMP)
-	$(PY) -m pytest -q
+	@lint=0; $(MAKE) --no-print-directory lint || lint=$$?; \
+	$(PY) -m pytest -q; rc=$$?; \
+	if [ $$rc -eq 5 ]; then echo "no tests were collected"; fi; \
+	if [ $$lint -ne 0 ]; then echo "make test: lint failed (see above; 'make lint' shows it again)"; fi; \
+	if [ $$rc -ne 0 ]; then exit $$rc; fi; exit $$lint
+
+# The fast lane: everything not marked slow (long tests, end to end runs on ../shared/data).
+test-fast: $(STAMP)
+	$(PY) -m pytest -q -m "not slow"
+
+lint: $(STAMP)
+	$(VENV)/bin/ruff check src tests benchmarks
+	$(VENV)/bin/ruff format --check src tests benchmarks
 
 clean:
 	rm -rf $(VENV) runs build *.egg-info

@@ -1,4 +1,9 @@
-"""Shared test fixtures."""
+"""Shared test fixtures and markers.
+
+Markers (``pyproject.toml``): ``slow`` — over about a second, or end to end on ``../shared/data``;
+``make test-fast`` (``pytest -m "not slow"``) leaves them out. ``shared_data`` — set here on
+every test that uses the :func:`shared_data` fixture (``-m "not shared_data"`` leaves them out).
+"""
 
 from __future__ import annotations
 
@@ -16,3 +21,10 @@ def shared_data() -> Path:
     if not SHARED_DATA.is_dir():
         pytest.skip(f"real data not available: {SHARED_DATA} is absent (tests that read ../shared/data skip)")
     return SHARED_DATA
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Mark every test that uses the ``shared_data`` fixture ``shared_data``."""
+    for item in items:
+        if "shared_data" in getattr(item, "fixturenames", ()):
+            item.add_marker(pytest.mark.shared_data)

@@ -36,6 +36,7 @@ def test_help_on_every_verb(capsys):
         assert "Usage" in out, path
 
 
+@pytest.mark.slow
 def test_demo_end_to_end(tmp_path, capsys):
     out = tmp_path / "demo"
     assert run(["demo", "--out", str(out), "--duration", "6"]) == 0

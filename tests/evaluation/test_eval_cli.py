@@ -107,6 +107,7 @@ def test_compare_bad_recording(scenario_file: Path, track_files, tmp_path: Path,
     assert "no such track file" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_compare_recordings_end_to_end_on_joyride(shared_data: Path, tmp_path: Path) -> None:
     """Real joyride radar imported as a recording, tracked by ``compare`` itself: a dataset against itself gives 0."""
     run_dir = tmp_path / "joyride"
@@ -121,6 +122,7 @@ def test_compare_recordings_end_to_end_on_joyride(shared_data: Path, tmp_path: P
     assert line["ahed"] == pytest.approx(0.0, abs=1e-6)
 
 
+@pytest.mark.slow
 def test_compare_writes_report(scenario_file: Path, track_files, tmp_path: Path) -> None:
     real, synt = map(str, track_files)
     out = tmp_path / "rep"
@@ -131,7 +133,7 @@ def test_compare_writes_report(scenario_file: Path, track_files, tmp_path: Path)
 
 
 def test_pairing_of_runs_and_tunings() -> None:
-    from seatwin.cli.compare import _pairs
+    from seatwin.pipeline.compare import comparison_pairs as _pairs
     from seatwin.errors import InputError
 
     assert _pairs(["a.csv"], ["b.csv"], []) == [("a.csv", "b.csv", None, "")]

@@ -69,6 +69,7 @@ def test_fidelity_bad_input(tmp_path, capsys):
     assert "fit-on" in err and err.count("\n") == 3
 
 
+@pytest.mark.slow
 def test_fidelity_real_joyride(shared_data, tmp_path):
     out = tmp_path / "real"
     code = run(["fidelity", "joyride", str(shared_data / "joyride" / "joyride.mat"), "--out", str(out),
@@ -91,6 +92,7 @@ def test_calibrate_bias_needs_a_fit_and_sets_the_tracker_bias(toy_mat, tmp_path,
     assert j["tracker_bearing_bias_deg"] == pytest.approx(j["models"]["fitted"]["radar"]["noise"]["bearing_bias_deg"])
 
 
+@pytest.mark.slow
 def test_fidelity_reruns_are_identical(toy_mat, tmp_path):
     args = ["fidelity", "joyride", str(toy_mat), "--fit-on", "first-half", "--seeds", "1", "--agents", "gnn",
             "--boot", "20", "--fit-boot", "3", "--no-html", "--seed", "4"]

@@ -18,6 +18,7 @@ pytestmark = pytest.mark.shared_data
 BASELINES = {1: 2.01, 2: 2.93}  # vessels 1 and 2 are Havfruen and Finn (order not published)
 
 
+@pytest.mark.slow
 def test_scenario3_targets_recovered(shared_data: Path, tmp_path: Path) -> None:
     recorded = read_gemini_csv(shared_data / "gemini-scenarios" / "Scenario3.csv")
     args = ["groundtruth", "--origin", f"{ORIGIN.lat_deg},{ORIGIN.lon_deg}"]

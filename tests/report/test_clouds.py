@@ -45,6 +45,7 @@ def test_cloud_at_world_frame(tmp_path: Path) -> None:
     assert snap.points[:-1].mean(axis=0) == pytest.approx([20.0, 2.0])
 
 
+@pytest.mark.slow
 def test_compare_report_with_clouds(tmp_path: Path) -> None:
     real = _recording(tmp_path / "real")
     synt = _recording(tmp_path / "synt", shift=0.5)

@@ -39,6 +39,7 @@ def page(tmp_path_factory: pytest.TempPathFactory) -> Path:
                                    scenario="s3", mask=load_mask("harbour"), clouds=clouds)
 
 
+@pytest.mark.slow
 def test_page_is_self_contained(page: Path) -> None:
     text = page.read_text()
     assert text.startswith("<!DOCTYPE html>")
@@ -58,6 +59,7 @@ def _chromium() -> str:
     pytest.skip("headless Chromium is not installed (Debian: apt-get update && apt-get install -y chromium)")
 
 
+@pytest.mark.slow
 def test_renders_in_headless_chromium(page: Path, tmp_path: Path) -> None:
     exe = _chromium()
     flags = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking",

@@ -39,6 +39,7 @@ def _synthetic_obs(n=300, sr=5.0, sb_deg=1.0, bb_deg=-2.0, pd=0.8, clutter_per_s
     return RadarObservations(np.arange(n) * 2.5, plots, antenna, truth, 10.0)
 
 
+@pytest.mark.slow
 def test_fit_recovers_noise_detection_and_clutter():
     obs = _synthetic_obs()
     base = RadarConfig(min_range_m=20.0, max_range_m=2000.0)
@@ -83,6 +84,7 @@ def test_fit_on_the_models_own_recording():
     assert abs(e["range_bias_m"]["estimate"]) < 4.0
 
 
+@pytest.mark.slow
 def test_fit_real_joyride(shared_data):
     from seatwin.fidelity.joyride import load_joyride, observations
 

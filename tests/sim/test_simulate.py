@@ -18,6 +18,7 @@ from seatwin.recording import open_bag
 from seatwin.scenario.builtin import builtin_scenario
 from seatwin.sim import simulate_scenario
 from seatwin.sim.loop import schedule
+from seatwin.sim.sensors import Periodic
 
 
 def _payloads(run_dir: Path) -> dict[str, list[bytes]]:
@@ -34,7 +35,7 @@ def scenario():
 
 
 def test_schedule_orders_sensors_by_time_and_phase():
-    class S:
+    class S(Periodic):
         def __init__(self, name, rate, phase):
             self.name, self.rate_hz, self.phase_s = name, rate, phase
 
@@ -42,6 +43,17 @@ def test_schedule_orders_sensors_by_time_and_phase():
     assert [(round(t, 3), i) for t, i, _ in ev] == [
         (0.0, 0), (0.03, 1), (0.1, 0), (0.2, 0), (0.23, 1), (0.3, 0), (0.4, 0), (0.43, 1)]
     assert [k for t, i, k in ev if i == 1] == [0, 1, 2]
+
+
+def test_frame_times_are_relative_to_the_start():
+    """POSIX-sized starts lose no frame to rounding (issue: the last sweep of Scenario6 fell outside)."""
+    from seatwin.sim.timing import periodic_times, time_window
+
+    t0 = 1600173270.0999441
+    times = periodic_times(t0, t0 + 81.9, 10.0)
+    assert len(times) == 819 and times[-1] - t0 == pytest.approx(81.8, abs=1e-6)
+    assert time_window(t0, t0 + 81.9, None, None) == (t0, t0 + 81.9)
+    assert time_window(t0, t0 + 81.9, t0 + 1.0, 80.9 + 2e-7)[1] == t0 + 81.9
 
 
 def test_recording_contents(tmp_path, scenario):
@@ -119,6 +131,7 @@ def _wait_for_flushes(run_dir: Path, proc: subprocess.Popen, counts: int = 25) -
     pytest.fail("the run did not flush in time")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGINT])
 def test_killed_run_leaves_a_readable_bag(tmp_path, sig):
     proc = _start_run(tmp_path)

@@ -27,6 +27,7 @@ def small_sweep(tmp_path_factory):
     return out
 
 
+@pytest.mark.slow
 def test_ahed_ranks_with_degradation(small_sweep):
     table = json.loads((small_sweep / "sweep.json").read_text())
     for kind in ("noise", "mount"):
@@ -38,6 +39,7 @@ def test_ahed_ranks_with_degradation(small_sweep):
         assert all(b > a for a, b in zip(means, means[1:])), (kind, means)
 
 
+@pytest.mark.slow
 def test_sweep_files(small_sweep):
     rows = list(csv.DictReader((small_sweep / "sweep.csv").open()))
     kinds = [r["kind"] for r in rows]

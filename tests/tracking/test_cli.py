@@ -62,7 +62,7 @@ def test_track_lidar_recording(tmp_path) -> None:
 
 @pytest.mark.parametrize("args,msg", [
     (["--sensors", "camera"], "camera detector"),
-    (["--sensors", "sonar"], "unknown sensor"),
+    (["--sensors", "sonar"], "should be 'lidar', 'radar' or 'camera'"),
     (["--tuning", "nope"], "not a tuning preset"),
     (["--sensors", "radar"], "no radar topics"),
     (["--map", "/nonexistent/map.yaml"], "map raster"),
@@ -79,6 +79,7 @@ def test_track_missing_recording(tmp_path, capsys) -> None:
     assert run(["track", str(tmp_path / "none"), "--out", str(tmp_path / "t.csv")]) == 2
 
 
+@pytest.mark.slow
 def test_joyride_import_and_track(shared_data, tmp_path) -> None:
     """The real joyride radar data: times kept, the target tracked (coverage at 50 m, docs/validation)."""
     from scipy.io import loadmat
@@ -96,6 +97,7 @@ def test_joyride_import_and_track(shared_data, tmp_path) -> None:
     assert s.coverage >= 0.9 and s.rmse_position <= 25.0
 
 
+@pytest.mark.slow
 def test_ravnkloa_import_and_track(shared_data, tmp_path) -> None:
     folder = shared_data / "ravnkloa"
     csv = sorted((folder / "radar-2023").glob("*.csv"))[0]
@@ -119,6 +121,7 @@ def test_import_bad_files(tmp_path, capsys) -> None:
     assert "line 3" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_joyride_cartesian_radar_model(shared_data, tmp_path) -> None:
     rd = tmp_path / "joyride"
     assert run(["import", "joyride", str(shared_data / "joyride" / "joyride.mat"), "--out", str(rd)]) == 0

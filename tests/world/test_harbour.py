@@ -67,8 +67,13 @@ def test_raster_harbour_from_a_generated_raster(tmp_path) -> None:
     c = caster_of(objs)
     h = c.cast([[-20.0, 0.0, -1.0]], [[0.0, -1.0, 0.0]])  # west at 1 m above water: the land edge
     assert h.range[0] == pytest.approx(10.0, abs=1e-4)
-    h = c.cast([[7.0, 0.0, -1.0]], [[0.0, -1.0, 0.0]])  # north = 7: row 32 is pier, edge at east 0
-    assert h.range[0] == pytest.approx(0.0, abs=1e-4) or h.range[0] < 0.5
+    # Westwards from east 6, 1 m above the water: the pier (rows 30–34 = north 5 … 10, east −10 … 0)
+    # shows its east face at east 0 (range 6); just south and north of it the land edge at −10 (16).
+    for north, expected in ((4.9, 16.0), (5.1, 6.0), (7.0, 6.0), (9.9, 6.0), (10.1, 16.0)):
+        h = c.cast([[north, 6.0, -1.0]], [[0.0, -1.0, 0.0]])
+        assert h.range[0] == pytest.approx(expected, abs=1e-4), north
+        np.testing.assert_allclose(h.normal[0], [0.0, 1.0, 0.0], atol=1e-6)
+        assert objs[h.object_id[0]].label == "quay"
     h = c.cast([[0.0, -12.0, -20.0]], [[0.0, 0.0, 1.0]])  # down onto the quay top
     assert h.range[0] == pytest.approx(18.5, abs=1e-4)
     h = c.cast([[0.0, -19.5, -20.0]], [[0.0, 0.0, 1.0]])  # ≥ 5 m from water: a building

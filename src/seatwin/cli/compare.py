@@ -21,71 +21,6 @@ _HELP = (
 )
 
 
-def _pairs(real: list[str], synthetic: list[str], tunings: list[str]) -> list[tuple[str, str, str | None, str]]:
-    """(real, synthetic, tuning, label) per comparison; track files are used as given, recordings tracked per tuning."""
-    from seatwin.errors import InputError
-    from seatwin.evaluation.runs import TRACK_FILE_SUFFIXES
-
-    if len(real) != len(synthetic):
-        raise InputError("--real/--synthetic", f"give as many --real as --synthetic, got {len(real)} and {len(synthetic)}")
-    is_file = [Path(p).suffix.lower() in TRACK_FILE_SUFFIXES for p in real + synthetic]
-    if len(real) == 1 and len(tunings) > 1:
-        if any(is_file):
-            raise InputError("--tuning", f"{len(tunings)} tunings but a track file was already tracked with one tuning; "
-                                         "give one --real/--synthetic pair per tuning, or recordings")
-        return [(real[0], synthetic[0], t, t) for t in tunings]
-    if tunings and len(tunings) != len(real):
-        raise InputError("--tuning", f"{len(tunings)} tunings for {len(real)} --real/--synthetic pairs")
-    if tunings:
-        return [(r, s, t, t) for r, s, t in zip(real, synthetic, tunings)]
-    labels = [""] if len(real) == 1 else [f"pair{i + 1}" for i in range(len(real))]
-    return [(r, s, None, label) for r, s, label in zip(real, synthetic, labels)]
-
-
-def load_run(spec: str, tuning: str | None):  # noqa: ANN201
-    """A track file as is, or a recording tracked by ``seatwin track`` with ``tuning`` (its defaults otherwise)."""
-    import tempfile
-
-    from seatwin.errors import InputError
-    from seatwin.evaluation import read_tracks
-    from seatwin.evaluation.runs import TRACK_FILE_SUFFIXES
-
-    path = Path(spec)
-    if path.suffix.lower() in TRACK_FILE_SUFFIXES:
-        return read_tracks(path)
-    if not path.exists():
-        raise InputError(path, "no such track file (.csv) or recording")
-    from seatwin.cli.main import app
-
-    with tempfile.TemporaryDirectory(prefix="seatwin-compare-") as tmp:
-        out = Path(tmp) / "tracks.csv"
-        args = ["track", str(path), "--out", str(out), "--no-progress"] + (["--tuning", tuning] if tuning else [])
-        typer.main.get_command(app).main(args, prog_name="seatwin", standalone_mode=False)
-        tracks = read_tracks(out)
-    tracks.source = f"{path} (tracked, tuning {tuning or 'the recording default'})"
-    return tracks
-
-
-def _clouds(real: str, synthetic: str, when: str, sensor: str, truth):  # noqa: ANN001, ANN202
-    """Fig. 5.10 input: both recordings' clouds nearest ``when`` (POSIX seconds or ``+S`` after the truth's start)."""
-    from seatwin.errors import InputError
-    from seatwin.evaluation.runs import TRACK_FILE_SUFFIXES
-    from seatwin.report import Clouds
-    from seatwin.report.clouds import cloud_at
-
-    for spec in (real, synthetic):
-        if Path(spec).suffix.lower() in TRACK_FILE_SUFFIXES:
-            raise InputError("--clouds-at", f"{spec} is a track file; point clouds need recordings for --real and --synthetic")
-    try:
-        t = float(when)
-    except ValueError:
-        raise InputError("--clouds-at", f"expected POSIX seconds or +SECONDS, got {when!r}") from None
-    if when.strip().startswith("+"):
-        t += min(tr.start for tr in truth.targets.values())
-    r, s = cloud_at(real, t, sensor), cloud_at(synthetic, t, sensor)
-    return Clouds(r.time, r.points, s.points, r.ownship, r.targets)
-
-
 def register(app: typer.Typer) -> None:
     @app.command("compare", help=_HELP)
     def compare_cmd(
@@ -103,43 +38,29 @@ def register(app: typer.Typer) -> None:
         map_spec: str = typer.Option("harbour", "--map", metavar="harbour|none|RASTER.yaml", help="Land drawn under the report's track plots: the built-in harbour, none, or a land/water raster (Ravnkloa base-map format)."),
         clouds_at: Optional[str] = typer.Option(None, "--clouds-at", metavar="TIME|+SECONDS", help="Add both datasets' point clouds at this time to the report (thesis Fig. 5.10): POSIX seconds, or +S after the ground truth's start. Needs recordings for --real and --synthetic."),
         clouds_sensor: str = typer.Option("lidar", "--clouds-sensor", metavar="lidar|radar", help="Which point clouds --clouds-at shows."),
+        keep_tracks: Optional[Path] = typer.Option(None, "--keep-tracks", metavar="DIR", help="Write the track files of tracked recordings into DIR."),
     ) -> None:
         import json
 
-        from seatwin.cli.evaluate import check_overlap
-        from seatwin.errors import InputError
-        from seatwin.evaluation import CompareOptions, compare, comparison_table, load_truth
+        from seatwin.cli.output import check_output_dir, check_output_file
+        from seatwin.evaluation import CompareOptions
+        from seatwin.pipeline.compare import compare_runs
 
-        if hellinger_form not in ("standard", "printed"):
-            raise InputError("--hellinger-form", f"expected 'standard' or 'printed', got {hellinger_form!r}")
-        if both_missing not in ("never", "zero", "skip"):
-            raise InputError("--both-missing", f"expected 'never', 'zero' or 'skip', got {both_missing!r}")
-        if not gate > 0:
-            raise InputError("--gate", f"must be positive, got {gate}")
-        if not time_tolerance >= 0:
-            raise InputError("--time-tolerance", f"must be >= 0, got {time_tolerance}")
-        if clouds_at is not None and report is None:
-            raise InputError("--clouds-at", "the point clouds go into the report: give --report DIR as well")
-        if clouds_sensor not in ("lidar", "radar"):
-            raise InputError("--clouds-sensor", f"expected 'lidar' or 'radar', got {clouds_sensor!r}")
-        tunings = [t.strip() for t in tuning.split(",") if t.strip()]
+        when, relative = _clouds_time(clouds_at)
+        if when is not None and report is None:
+            from seatwin.errors import ParameterError
+
+            raise ParameterError("clouds_at", "the point clouds go into the report: give --report DIR as well")
+        if json_out is not None:
+            check_output_file(json_out, "json_out")
+        if report is not None:
+            check_output_dir(report, "report")
         options = CompareOptions(gate=gate, confirmed_only=not all_tracks, time_tolerance=time_tolerance,
                                  form=hellinger_form, both_missing=both_missing)  # type: ignore[arg-type]
-        truth_set = load_truth(truth)
-        comparisons = []
-        cache: dict[tuple[str, str | None], object] = {}
-
-        def run_of(spec: str, tun: str | None):  # noqa: ANN202 - a recording used twice is tracked once per tuning
-            if (spec, tun) not in cache:
-                cache[(spec, tun)] = load_run(spec, tun)
-            return cache[(spec, tun)]
-
-        for r, s, t, label in _pairs(real, synthetic, tunings):
-            run_r, run_s = run_of(r, t), run_of(s, t)
-            check_overlap(run_r, truth_set, r)
-            check_overlap(run_s, truth_set, s)
-            comparisons.append(compare(run_r, run_s, truth_set, tuning=label, options=options))
-        table = comparison_table(comparisons)
+        result = compare_runs(real, synthetic, truth, tunings=[t.strip() for t in tuning.split(",") if t.strip()],
+                              options=options, report_dir=report, report_map=map_spec, clouds_at=when,
+                              clouds_relative=relative, clouds_sensor=clouds_sensor, keep_tracks=keep_tracks)
+        table = result.table
         typer.echo(f"{'target':<12} {'tuning':<10} {'AHED':>7} {'common':>6} {'only_r':>6} {'only_s':>6} {'covdiff':>8}")
         for ln in table["targets"]:
             ahed = "-" if ln["ahed"] is None else f"{ln['ahed']:.4f}"
@@ -148,15 +69,23 @@ def register(app: typer.Typer) -> None:
                        f"{ln['n_only_synthetic']:>6} {cd:>8}")
         mean = "-" if table["ahed_mean"] is None else f"{table['ahed_mean']:.4f}"
         typer.echo(f"AHED mean ({hellinger_form} HED): {mean}")
+        for path in result.track_files:
+            typer.echo(f"wrote {path}")
         if json_out is not None:
-            json_out.parent.mkdir(parents=True, exist_ok=True)
-            json_out.write_text(json.dumps({"real": real, "synthetic": synthetic, "truth": truth, **table}, indent=2) + "\n")
+            json_out.write_text(json.dumps(result.to_json(), indent=2) + "\n")
             typer.echo(f"wrote {json_out}")
-        if report is not None:
-            from seatwin.perception.map_mask import load_mask
-            from seatwin.report import write_comparison_report
+        if result.report is not None:
+            typer.echo(f"wrote {result.report}")
 
-            clouds = [] if clouds_at is None else [_clouds(real[0], synthetic[0], clouds_at, clouds_sensor, truth_set)]
-            page = write_comparison_report(report, comparisons, truth_set, title=f"seatwin compare — {Path(truth).name}",
-                                           scenario=Path(truth).stem, mask=load_mask(map_spec), clouds=clouds)
-            typer.echo(f"wrote {page}")
+
+def _clouds_time(text: str | None) -> tuple[float | None, bool]:
+    """``--clouds-at``: POSIX seconds, or ``+S`` seconds after the ground truth's start."""
+    if text is None:
+        return None, False
+    from seatwin.errors import ParameterError
+
+    try:
+        value = float(text)
+    except ValueError:
+        raise ParameterError("clouds_at", f"expected POSIX seconds or +SECONDS, got {text!r}") from None
+    return value, text.strip().startswith("+")

@@ -15,6 +15,17 @@ FLAG_OF: dict[str, str] = {
     "merge_distance": "--radar-merge",
     "radar_kind": "--radar-model",
     "eps": "--cluster-eps",
+    "vessels": "--vessel",
+    "rate_hz": "--rate",
+    "eps_threshold_m": "--eps-threshold",
+    "max_gap_s": "--max-gap",
+    "smooth_s": "--smooth",
+    "plots_dir": "--plots",
+    "form": "--hellinger-form",
+    "json_out": "--json",
+    "report_dir": "--report",
+    "tunings": "--tuning",
+    "real": "--real/--synthetic",
 }
 
 

@@ -34,16 +34,13 @@ def register(app: typer.Typer) -> None:
         smooth: float = typer.Option(1.0, "--smooth", metavar="S", help="Moving-average window for the central-difference velocity (s, 0: none); the course over ground of single-antenna vessels comes from it."),
         min_cog_speed: float = typer.Option(0.5, "--min-cog-speed", metavar="M/S", help="Single antenna: below this speed the course over ground is not used as heading (flagged, interpolated)."),
     ) -> None:
-        from seatwin.errors import InputError
-        from seatwin.geo import GeodeticOrigin
-        from seatwin.groundtruth import VesselSpec, compute_ground_truth, write_outputs
+        from seatwin.cli.parsing import parse_origin, parse_vessel
+        from seatwin.groundtruth import compute_ground_truth, write_outputs
 
-        if meridian not in ("correct", "printed"):
-            raise InputError("--meridian", f"expected 'correct' or 'printed', got {meridian!r}")
-        specs = [VesselSpec.parse(v) for v in vessel]
+        specs = [parse_vessel(v) for v in vessel]
         result = compute_ground_truth(
             specs,
-            GeodeticOrigin.parse(origin),
+            parse_origin(origin),
             rate_hz=rate,
             meridian=meridian,  # type: ignore[arg-type]
             eps_threshold_m=eps_threshold,
@@ -51,7 +48,7 @@ def register(app: typer.Typer) -> None:
             smooth_s=smooth,
             min_cog_speed=min_cog_speed,
         )
-        written = write_outputs(result, out, quality, plots)
+        written = write_outputs(result, out, quality_json=quality, plots_dir=plots)
         for v_no, v in enumerate(result.vessels, start=1):
             eps = "" if v.eps_gnss is None else f", mean ε_gnss {float(v.eps_gnss.mean()):.3f} m"
             typer.echo(

@@ -36,22 +36,23 @@ def register(app: typer.Typer) -> None:
         dissipation: bool = typer.Option(False, "--dissipation", help="Range-dependent return probability."),
         fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Bag format."),
         date: str | None = typer.Option(None, "--date", help="UTC date YYYY-MM-DD of a TimeOfDay CSV."),
+        sensors: str = typer.Option("lidar", "--sensors", metavar="LIST", help="Comma-separated ownship sensors: lidar, radar."),
+        radar: str | None = typer.Option(None, "--radar", metavar="RADAR.yaml", help="Radar configuration (default: the built-in model)."),
         quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar."),
     ) -> None:
         """Simulate the ownship's sensors along a scenario and record a ROS bag (MCAP by default).
 
         Topics (defaults): /lidar/points (PointCloud2, VLP-16 layout of thesis Table 4.2),
-        /ground_truth/<vessel>/pose|odom|fix, /tf, /tf_static.
+        /radar/detections (with --sensors lidar,radar), /ground_truth/<vessel>/pose|odom|fix, /tf, /tf_static.
         """
+        from seatwin.cli.output import split_list
         from seatwin.cli.scenario import _date
-        from seatwin.scenario.load import load_scenario
-        from seatwin.sim import simulate_scenario
+        from seatwin.pipeline.simulate import simulate_run
 
-        sc = load_scenario(scenario, date=_date(date))
-        result = simulate_scenario(
-            sc, out, start=start, duration=duration, seed=seed, lidar_preset=lidar_preset,
-            lidar_mode=lidar_mode.value, ray_drop=ray_drop, range_noise=range_noise,
-            dissipation=dissipation, fmt=fmt.value, progress=not quiet,
+        result = simulate_run(
+            scenario, out, start=start, duration=duration, date=_date(date), progress=not quiet,
+            sensors=split_list(sensors, "sensors"), seed=seed, lidar_preset=lidar_preset, lidar_mode=lidar_mode.value,
+            ray_drop=ray_drop, range_noise=range_noise, dissipation=dissipation, fmt=fmt.value, radar_config=radar,
         )
         state = "completed" if result.completed else "INCOMPLETE (interrupted)"
         typer.echo(

@@ -16,21 +16,6 @@ _HELP = (
 )
 
 
-def _parse_sensors(text: str | None) -> tuple[str, ...] | None:
-    if text is None:
-        return None
-    parts = tuple(p.strip() for p in text.split(",") if p.strip())
-    from seatwin.errors import InputError
-    from seatwin.perception.from_recording import SENSORS
-
-    if not parts:
-        raise InputError("--sensors", "expected a comma-separated list such as lidar,radar")
-    for p in parts:
-        if p not in SENSORS:
-            raise InputError("--sensors", f"unknown sensor {p!r}; expected some of {', '.join(SENSORS)}")
-    return parts
-
-
 def register(app: typer.Typer) -> None:
     @app.command("track", help=_HELP)
     def track_cmd(
@@ -43,99 +28,22 @@ def register(app: typer.Typer) -> None:
         radar_kind: str = typer.Option("range_bearing", "--radar-model", metavar="range_bearing|cartesian", help="Measurement model of radar plots: range and bearing from the radar (R from r_range, r_bearing), or Cartesian north/east (R from r_cartesian)."),
         eps: float = typer.Option(1.5, "--cluster-eps", metavar="M", help="Lidar clustering distance (m)."),
         min_points: int = typer.Option(3, "--min-points", metavar="N", help="Smallest lidar cluster (points)."),
+        agent: str = typer.Option("jipda", "--agent", metavar="jipda|gnn", help="The tracker: JIPDA (thesis ch. 5.1) or global nearest neighbour."),
         progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar on long recordings."),
     ) -> None:
-        import sys
-        import time as _time
+        from seatwin.cli.output import check_output_file, progress_counter, split_list
+        from seatwin.pipeline.track import TrackOptions, track_recording
+        from seatwin.settings import validated
 
-        import numpy as np
+        check_output_file(out, "out")
+        options = validated(TrackOptions, dict(
+            sensors=split_list(sensors, "sensors"), tuning=tuning, map_spec=map_spec, merge_distance=merge,
+            radar_kind=radar_kind, eps=eps, min_points=min_points, agent=agent))
+        with progress_counter("tracking", enabled=progress) as advance:
+            result = track_recording(recording, options, progress=advance)
+        from seatwin.evaluation import write_tracks
 
-        from seatwin.errors import InputError
-        from seatwin.evaluation import Tracks, write_tracks
-        from seatwin.perception.from_recording import scans_from_recording
-        from seatwin.perception.lidar import LidarClustering
-        from seatwin.perception.measurements import MeasurementKind
-        from seatwin.perception.map_mask import load_mask
-        from seatwin.perception.radar import RadarPlots
-        from seatwin.recording import open_bag
-        from seatwin.tracking import JIPDATracker, load_tuning
-
-        if not eps > 0:
-            raise InputError("--cluster-eps", f"must be positive, got {eps}")
-        if min_points < 1:
-            raise InputError("--min-points", f"must be at least 1, got {min_points}")
-        if radar_kind not in ("range_bearing", "cartesian"):
-            raise InputError("--radar-model", f"expected range_bearing or cartesian, got {radar_kind!r}")
-        if merge is not None and merge < 0:
-            raise InputError("--radar-merge", f"must be non-negative, got {merge}")
-        wanted = _parse_sensors(sensors)
-        with open_bag(recording) as rec:
-            hints = ((rec.manifest or {}).get("metadata") or {}).get("tracking") or {}
-            cfg = load_tuning(tuning or hints.get("tuning") or "real")
-            mask = load_mask(map_spec if map_spec is not None else _hint_path(hints.get("map"), rec))
-            radar = RadarPlots(merge_distance=merge if merge is not None else float(hints.get("radar_merge", 0.0)),
-                               kind=MeasurementKind(radar_kind))
-            if wanted is None:
-                present = []
-                if rec.radar_topics():
-                    present.append("radar")
-                if len(rec.topics_of_type("sensor_msgs/msg/PointCloud2")) > len(rec.radar_topics()):
-                    present.append("lidar")
-                wanted = tuple(present) or ("lidar", "radar")
-            for s in wanted:
-                if s != "camera":
-                    cfg.sensor(s)  # the tuning must cover every sensor used
-            found = scans_from_recording(rec, wanted, mask=mask, lidar=LidarClustering(eps=eps, min_points=min_points),
-                                         radar=radar)
-            tracker = JIPDATracker(cfg)
-            parts, times = [], []
-            t_start = _time.perf_counter()
-            show = progress and found.total >= 200 and sys.stderr.isatty()
-            bar = None
-            if show:
-                from rich.console import Console
-                from rich.progress import Progress
-
-                bar = Progress(console=Console(stderr=True), transient=True)
-                bar.start()
-                task = bar.add_task("tracking", total=found.total)
-            try:
-                last_t = None
-                for scan in found.scans:
-                    if last_t is not None and scan.time < last_t:
-                        raise InputError(recording, f"scans out of time order: {scan.time!r} after {last_t!r}")
-                    table = tracker.step(scan)
-                    if times and times[-1] == scan.time:  # two sensors at one instant: keep the later estimate
-                        parts.pop()
-                        times.pop()
-                    parts.append(table)
-                    times.append(scan.time)
-                    last_t = scan.time
-                    if bar is not None:
-                        bar.advance(task)
-            finally:
-                if bar is not None:
-                    bar.stop()
-        from seatwin.tracking import TrackTable
-
-        tab = TrackTable.concatenate(parts)
-        tracks = Tracks(tab.time, tab.track_id, tab.existence, tab.x, tab.P, tab.confirmed,
-                        scan_times=np.unique(np.asarray(times, dtype=float)), source=str(out))
-        write_tracks(out, tracks)
-        elapsed = _time.perf_counter() - t_start
-        n_ids = len(np.unique(tab.track_id))
-        n_conf = len(np.unique(tab.track_id[tab.confirmed]))
-        typer.echo(f"{len(times)} scans ({', '.join(wanted)}), tuning {cfg.name!r}: {n_ids} tracks, {n_conf} confirmed; "
-                   f"{elapsed:.2f} s; wrote {out}")
-
-
-def _hint_path(value: object, rec) -> str | None:  # noqa: ANN001
-    """A map hint from the manifest: a preset name, or a path relative to the run directory."""
-    if value is None:
-        return None
-    text = str(value)
-    if text in ("harbour", "none"):
-        return text
-    base = rec.run_dir if rec.run_dir is not None else Path(".")
-    p = Path(text)
-    return str(p if p.is_absolute() else base / p)
+        result.tracks.source = str(out)
+        write_tracks(out, result.tracks)
+        typer.echo(f"{result.n_scans} scans ({', '.join(result.sensors)}), tuning {result.tuning!r}: {result.n_tracks} tracks, "
+                   f"{result.n_confirmed} confirmed; {result.elapsed_s:.2f} s; wrote {out}")

@@ -23,6 +23,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
+from seatwin.errors import ParameterError
 from seatwin.evaluation.association import DEFAULT_GATE_M
 from seatwin.evaluation.evaluate import Evaluation, evaluate
 from seatwin.evaluation.hellinger import FORMS, HellingerForm, covdiff, hellinger
@@ -48,11 +49,13 @@ class CompareOptions:
 
     def __post_init__(self) -> None:
         if self.form not in FORMS:
-            raise ValueError(f"form must be one of {FORMS}, got {self.form!r}")
+            raise ParameterError("form", f"expected one of {', '.join(FORMS)}, got {self.form!r}")
         if self.both_missing not in BOTH_MISSING:
-            raise ValueError(f"both_missing must be one of {BOTH_MISSING}, got {self.both_missing!r}")
+            raise ParameterError("both_missing", f"expected one of {', '.join(BOTH_MISSING)}, got {self.both_missing!r}")
         if not self.time_tolerance >= 0:
-            raise ValueError(f"time_tolerance must be >= 0, got {self.time_tolerance}")
+            raise ParameterError("time_tolerance", f"must be >= 0, got {self.time_tolerance}")
+        if not self.gate > 0:
+            raise ParameterError("gate", f"must be positive, got {self.gate}")
 
 
 def match_times(a: NDArray[np.float64], b: NDArray[np.float64], tolerance: float) -> tuple[NDArray[np.int64], NDArray[np.int64]]:

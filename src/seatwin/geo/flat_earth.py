@@ -30,10 +30,9 @@ from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
-import pymap3d
 from numpy.typing import ArrayLike, NDArray
 
-from seatwin.errors import InputError
+from seatwin.geo.angles import wrap_to_180
 from seatwin.geo.wgs84 import WGS84_A, WGS84_E2
 
 Meridian = Literal["correct", "printed"]
@@ -41,7 +40,7 @@ Meridian = Literal["correct", "printed"]
 
 @dataclass(frozen=True)
 class GeodeticOrigin:
-    """The geodetic origin of a local NED frame (degrees, metres)."""
+    """The geodetic origin of a local NED frame (degrees, metres); :class:`ValueError` if out of range."""
 
     lat_deg: float
     lon_deg: float
@@ -49,23 +48,11 @@ class GeodeticOrigin:
 
     def __post_init__(self) -> None:
         if not np.isfinite([self.lat_deg, self.lon_deg, self.height_m]).all():
-            raise InputError("origin", f"latitude, longitude and height must be finite, got {self}")
+            raise ValueError(f"latitude, longitude and height must be finite, got {self}")
         if not -90.0 <= self.lat_deg <= 90.0:
-            raise InputError("origin", f"latitude must be in [-90, 90] degrees, got {self.lat_deg}")
+            raise ValueError(f"latitude must be in [-90, 90] degrees, got {self.lat_deg}")
         if not -180.0 <= self.lon_deg <= 360.0:
-            raise InputError("origin", f"longitude must be in [-180, 360] degrees, got {self.lon_deg}")
-
-    @classmethod
-    def parse(cls, text: str) -> GeodeticOrigin:
-        """Parse ``LAT,LON[,HEIGHT]`` (degrees, metres) as given on the command line."""
-        parts = [p.strip() for p in text.split(",")]
-        if len(parts) not in (2, 3):
-            raise InputError("--origin", f"expected LAT,LON[,HEIGHT], got {text!r}")
-        try:
-            values = [float(p) for p in parts]
-        except ValueError:
-            raise InputError("--origin", f"expected numbers LAT,LON[,HEIGHT], got {text!r}") from None
-        return cls(*values)
+            raise ValueError(f"longitude must be in [-180, 360] degrees, got {self.lon_deg}")
 
 
 def prime_vertical_radius(lat0_rad: float) -> float:
@@ -105,7 +92,7 @@ def llh_to_ned_flat(
     r_m, r_n = _radii(origin, meridian)
     dlat = np.radians(np.asarray(lat_deg, float) - origin.lat_deg)
     # Longitude difference wrapped to [−180°, 180°) so points across the antimeridian stay near.
-    dlon = np.radians((np.asarray(lon_deg, float) - origin.lon_deg + 180.0) % 360.0 - 180.0)
+    dlon = np.radians(wrap_to_180(np.asarray(lon_deg, float) - origin.lon_deg))
     north = dlat / np.arctan2(1.0, r_m)
     east = dlon / np.arctan2(1.0, r_n * np.cos(np.radians(origin.lat_deg)))
     down = -(np.asarray(height_m, float) - origin.height_m)
@@ -133,6 +120,8 @@ def llh_to_ned_exact(
     lat_deg: ArrayLike, lon_deg: ArrayLike, height_m: ArrayLike, origin: GeodeticOrigin
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """Exact LLH → NED on WGS-84 (through ECEF, ``pymap3d``): the reference for the flat-earth form."""
+    import pymap3d  # 0.15 s to import: only where the exact conversion is used
+
     n, e, d = pymap3d.geodetic2ned(
         np.asarray(lat_deg, float),
         np.asarray(lon_deg, float),
@@ -148,6 +137,8 @@ def ned_to_llh_exact(
     north: ArrayLike, east: ArrayLike, down: ArrayLike, origin: GeodeticOrigin
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """Exact NED → LLH on WGS-84 (``pymap3d``)."""
+    import pymap3d
+
     lat, lon, h = pymap3d.ned2geodetic(
         np.asarray(north, float),
         np.asarray(east, float),

@@ -1,21 +1,11 @@
-"""Heading helpers: wrapping, degree/radian at file boundaries, unwrapping, eq. 3.6."""
+"""Headings: degree/radian at file boundaries, eq. 3.6 (wrapping is :mod:`seatwin.geo.angles`)."""
 
 from __future__ import annotations
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-
-def wrap_to_pi(angle: ArrayLike) -> NDArray[np.float64] | float:
-    """Wrap angles [rad] to [−π, π)."""
-    a = np.asarray(angle, dtype=float)
-    wrapped = (a + np.pi) % (2.0 * np.pi) - np.pi
-    return float(wrapped) if wrapped.ndim == 0 else wrapped
-
-
-def unwrap(angle: ArrayLike) -> NDArray[np.float64]:
-    """Remove 2π jumps so a heading sequence can be interpolated linearly."""
-    return np.unwrap(np.asarray(angle, dtype=float))
+from seatwin.geo.angles import wrap_to_pi
 
 
 def deg_to_rad_heading(deg: ArrayLike) -> NDArray[np.float64] | float:
@@ -25,7 +15,7 @@ def deg_to_rad_heading(deg: ArrayLike) -> NDArray[np.float64] | float:
 
 def rad_to_deg_heading(rad: ArrayLike) -> NDArray[np.float64] | float:
     """Heading in radians → degrees in [−180, 180) (the scenario CSV convention)."""
-    d = np.degrees(np.asarray(wrap_to_pi(rad), dtype=float))
+    d = np.degrees(np.asarray(wrap_to_pi(np.asarray(rad, dtype=float)), dtype=float))
     # wrap_to_pi can round to exactly π·(180/π)=180 for inputs a hair below π.
     d = np.where(d >= 180.0, d - 360.0, d)
     return float(d) if d.ndim == 0 else d

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from seatwin.errors import InputError
+from seatwin.errors import ParameterError
 from seatwin.geo import GeodeticOrigin
 from seatwin.geo.flat_earth import Meridian
 from seatwin.groundtruth.detect import read_antenna_log
@@ -60,7 +60,7 @@ class GroundTruthResult:
 
 
 def compute_ground_truth(
-    specs: Sequence[VesselSpec],
+    vessels: Sequence[VesselSpec],
     origin: GeodeticOrigin,
     *,
     rate_hz: float = DEFAULT_RATE_HZ,
@@ -71,37 +71,42 @@ def compute_ground_truth(
     min_cog_speed: float = DEFAULT_MIN_COG_SPEED,
     logs: dict[Path, AntennaLog] | None = None,
 ) -> GroundTruthResult:
-    """Read every vessel's antenna files (or take them from ``logs``) and build the ground truth."""
-    if not specs:
-        raise InputError("--vessel", "give at least one vessel")
-    names = [s.name for s in specs]
+    """Read every vessel's antenna files (or take them from ``logs``) and build the ground truth.
+
+    Bad settings raise :class:`ParameterError` naming the parameter (``vessels``, ``rate_hz``, …).
+    """
+    if not vessels:
+        raise ParameterError("vessels", "give at least one vessel")
+    names = [s.name for s in vessels]
     dup = sorted({n for n in names if names.count(n) > 1})
     if dup:
-        raise InputError("--vessel", f"vessel names must be unique, repeated: {dup}")
-    for what, value in (("--eps-threshold", eps_threshold_m), ("--max-gap", max_gap_s)):
+        raise ParameterError("vessels", f"vessel names must be unique, repeated: {dup}")
+    for param, value in (("eps_threshold_m", eps_threshold_m), ("max_gap_s", max_gap_s)):
         if not np.isfinite(value) or value <= 0:
-            raise InputError(what, f"must be a positive number, got {value!r}")
+            raise ParameterError(param, f"must be a positive number, got {value!r}")
     if not np.isfinite(smooth_s) or smooth_s < 0:
-        raise InputError("--smooth", f"must be zero or a positive number of seconds, got {smooth_s!r}")
+        raise ParameterError("smooth_s", f"must be zero or a positive number of seconds, got {smooth_s!r}")
+    if not np.isfinite(min_cog_speed) or min_cog_speed < 0:
+        raise ParameterError("min_cog_speed", f"must be zero or a positive speed in m/s, got {min_cog_speed!r}")
     if meridian not in ("correct", "printed"):
-        raise InputError("--meridian", f"expected 'correct' or 'printed', got {meridian!r}")
+        raise ParameterError("meridian", f"expected 'correct' or 'printed', got {meridian!r}")
     logs = dict(logs or {})
-    for spec in specs:
+    for spec in vessels:
         for f in spec.files:
             if f not in logs:
                 logs[f] = read_antenna_log(f)
-    all_logs = [logs[f] for spec in specs for f in spec.files]
+    all_logs = [logs[f] for spec in vessels for f in spec.files]
     time = common_clock(all_logs, rate_hz)
-    vessels = []
-    for spec in specs:
+    truths = []
+    for spec in vessels:
         antennas = [resample_log(logs[f], time, max_gap_s) for f in spec.files]
-        vessels.append(
+        truths.append(
             build_vessel(
                 spec, antennas, origin, meridian=meridian, eps_threshold_m=eps_threshold_m,
                 smooth_s=smooth_s, min_cog_speed=min_cog_speed,
             )  # fmt: skip
         )
-    return GroundTruthResult(origin, float(rate_hz), meridian, float(max_gap_s), time, vessels)
+    return GroundTruthResult(origin, float(rate_hz), meridian, float(max_gap_s), time, truths)
 
 
 def write_outputs(
@@ -136,7 +141,7 @@ def write_outputs(
 
             pdir = Path(plots_dir)
             if pdir.exists() and not pdir.is_dir():
-                raise InputError("--plots", f"{pdir} exists and is not a folder")
+                raise ParameterError("plots_dir", f"{pdir} exists and is not a folder")
             pdir.parent.mkdir(parents=True, exist_ok=True)
             staging = Path(tempfile.mkdtemp(prefix=f".{pdir.name}.", dir=pdir.parent))
             tmp_dirs.append(staging)

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from seatwin.errors import InputError
+from seatwin.errors import InputError, ParameterError
 from seatwin.groundtruth.log import AntennaLog
 
 DEFAULT_RATE_HZ = 10.0
@@ -38,7 +38,7 @@ class ResampledLog:
 def common_clock(logs: Sequence[AntennaLog], rate_hz: float = DEFAULT_RATE_HZ) -> NDArray[np.float64]:
     """Times k / rate (integer k) within the interval every log covers; an :class:`InputError` if none."""
     if not np.isfinite(rate_hz) or rate_hz <= 0:
-        raise InputError("--rate", f"the rate must be a positive number of Hz, got {rate_hz!r}")
+        raise ParameterError("rate_hz", f"the rate must be a positive number of Hz, got {rate_hz!r}")
     if not logs:
         raise InputError(None, "no antenna logs to resample")
     start = max(log.start for log in logs)

@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from seatwin.errors import InputError
+from seatwin.errors import InputError, ParameterError
 from seatwin.geo import GeodeticOrigin, llh_to_ned_flat, unwrap, wrap_to_pi
 from seatwin.geo.flat_earth import Meridian
 from seatwin.groundtruth.equations import (
@@ -49,30 +49,22 @@ HEADING_COG = "course over ground"
 
 @dataclass(frozen=True)
 class VesselSpec:
-    """A vessel as given on the command line: ``NAME=BOW,STERN[,BASELINE_M]`` or ``NAME=FILE``."""
+    """A vessel and its antenna log files: bow then stern (two antennas) or one file.
+
+    ``baseline_m`` is the hand-measured bow–stern distance |Q_r| (None: a known thesis vessel's,
+    else the median measured distance). The command line's ``NAME=BOW,STERN[,BASELINE_M]`` is
+    parsed by :func:`seatwin.cli.parsing.parse_vessel`.
+    """
 
     name: str
     files: tuple[Path, ...]
     baseline_m: float | None = None
 
-    @classmethod
-    def parse(cls, text: str) -> VesselSpec:
-        name, sep, rest = text.partition("=")
-        name = name.strip()
-        if not sep or not name or not rest.strip():
-            raise InputError("--vessel", f"expected NAME=BOW,STERN[,BASELINE_M] or NAME=FILE, got {text!r}")
-        parts = [p.strip() for p in rest.split(",")]
-        if any(not p for p in parts) or len(parts) > 3:
-            raise InputError("--vessel", f"expected NAME=BOW,STERN[,BASELINE_M] or NAME=FILE, got {text!r}")
-        baseline = None
-        if len(parts) == 3:
-            try:
-                baseline = float(parts[2])
-            except ValueError:
-                raise InputError("--vessel", f"baseline must be a number of metres, got {parts[2]!r} in {text!r}") from None
-            if not np.isfinite(baseline) or baseline <= 0:
-                raise InputError("--vessel", f"baseline must be a positive number of metres, got {parts[2]!r} in {text!r}")
-        return cls(name, tuple(Path(p) for p in parts[:2]), baseline)
+    def __post_init__(self) -> None:
+        if not self.name or not 1 <= len(self.files) <= 2:
+            raise ParameterError("vessels", f"a vessel needs a name and one or two antenna files, got {self.name!r} with {len(self.files)}")
+        if self.baseline_m is not None and not (np.isfinite(self.baseline_m) and self.baseline_m > 0):
+            raise ParameterError("vessels", f"vessel {self.name!r}: baseline must be a positive number of metres, got {self.baseline_m!r}")
 
 
 @dataclass

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from seatwin.errors import InputError
+from seatwin.errors import InputError, ParameterError
 from seatwin.perception.frames import Mount, SensorPose, sensor_pose
 from seatwin.perception.lidar import LidarClustering, lidar_scan
 from seatwin.perception.map_mask import NoMask, WaterMask
@@ -84,9 +84,9 @@ def scans_from_recording(
     """Scans of the wanted ``sensors`` from an open :class:`seatwin.recording.Recording`."""
     for s in sensors:
         if s not in SENSORS:
-            raise InputError("--sensors", f"unknown sensor {s!r}; expected some of {', '.join(SENSORS)}")
+            raise ParameterError("sensors", f"unknown sensor {s!r}; expected some of {', '.join(SENSORS)}")
     if "camera" in sensors:
-        raise InputError("--sensors", "camera: the bearing measurement model is in place, but the camera detector "
+        raise ParameterError("sensors", "camera: the bearing measurement model is in place, but the camera detector "
                                       "(images → bearings) is not part of seatwin yet; use lidar and/or radar")
     mask = mask or NoMask()
     radar_topics = rec.radar_topics() if "radar" in sensors else []

@@ -1,88 +1,97 @@
-"""A scenario → a recorded synthetic dataset: the ownship's rig and ground truth through the loop."""
+"""A scenario → a recorded synthetic dataset: the ownship's sensors and every vessel's ground truth through the loop."""
 
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 from pathlib import Path
-
-import numpy as np
+from typing import Any
 
 from seatwin.errors import InputError
-from seatwin.recording.config import check_format
 from seatwin.recording.manifest import MANIFEST_NAME
 from seatwin.scenario import Scenario
-from seatwin.sim.loop import SimulationResult, simulate, time_window
-from seatwin.sim.sensors import GroundTruthSensor, LidarSensor
+from seatwin.settings import validated
+from seatwin.sim.loop import SimulationResult, simulate
+from seatwin.sim.sensors import GroundTruthSensor, LidarSensor, SimSensor
+from seatwin.sim.settings import SimulationSettings
+from seatwin.sim.timing import time_window
 
 RESOLVED_SCENARIO = "scenario.yaml"
+
+
+def scenario_sensors(scenario: Scenario, settings: SimulationSettings) -> list[SimSensor]:
+    """Ground truth and the ownship's sensors of ``settings.sensors``, all in one scene built once.
+
+    ``scenario`` already carries the run's seed. The lidar's ``mount_yaw_bias_deg`` turns the
+    simulated mount while /tf_static records the nominal one (a miscalibrated extrinsic).
+    """
+    from seatwin.sensors.lidar import lidar_for_scenario
+    from seatwin.sensors.lidar_config import MILLIAMPERE_LIDAR_MOUNT, RangeDissipation, lidar_preset
+    from seatwin.world.scene import Scene
+
+    if scenario.ownship is None:
+        raise InputError(scenario.source, "the scenario has no ownship to carry the sensors")
+    scene = Scene.from_scenario(scenario)
+    sensors: list[SimSensor] = [GroundTruthSensor(scenario, settings.ground_truth_rate_hz)]
+    if "lidar" in settings.sensors:
+        config = lidar_preset(settings.lidar_preset)
+        if settings.ray_drop is not None:
+            config = config.with_(drop_probability=float(settings.ray_drop))
+        if settings.range_noise is not None:
+            config = config.with_(range_accuracy=2.0 * float(settings.range_noise))
+        if settings.dissipation:
+            config = config.with_(dissipation=RangeDissipation())
+        nominal = MILLIAMPERE_LIDAR_MOUNT
+        mount = dataclasses.replace(nominal, yaw_deg=nominal.yaw_deg + settings.mount_yaw_bias_deg)
+        lidar = lidar_for_scenario(scenario, scene=scene, config=config, mount=mount, range_model=settings.lidar_mode)
+        sensors.append(LidarSensor(lidar, recorded_mount=nominal))
+    if "radar" in settings.sensors:
+        from seatwin.sensors.radar.config import RadarConfig, load_radar_config
+        from seatwin.sensors.radar.model import RadarModel
+        from seatwin.sim.radar import RadarSensor
+
+        cfg = load_radar_config(settings.radar_config) if settings.radar_config else RadarConfig()
+        sensors.append(RadarSensor(RadarModel(cfg, seed=scenario.seed), scene, scenario.ownship.name))
+    return sensors
 
 
 def simulate_scenario(
     scenario: Scenario,
     run_dir: str | Path,
+    settings: SimulationSettings | None = None,
     *,
     start: float | None = None,
     duration: float | None = None,
-    seed: int | None = None,
-    lidar_preset: str = "vlp16",
-    lidar_mode: str = "raycast",
-    ray_drop: float | None = None,
-    range_noise: float | None = None,
-    dissipation: bool = False,
-    mount_yaw_bias_deg: float = 0.0,
-    fmt: str = "mcap",
-    ground_truth_rate_hz: float = 10.0,
-    progress: bool = True,
+    progress: bool | Callable[[float, float], None] = True,
+    **changes: Any,
 ) -> SimulationResult:
-    """Simulate the ownship's lidar (and record every vessel's ground truth) along ``scenario``.
+    """Simulate the ownship's sensors along ``scenario`` into a new recording in ``run_dir``.
 
-    ``seed`` overrides the scenario's seed; ``ray_drop``/``range_noise`` (σ, m) override the
-    preset's; ``dissipation`` switches range-dependent return probability on.
-    ``mount_yaw_bias_deg`` simulates the lidar turned by that much more than its nominal mount
-    while ``/tf_static`` still records the nominal mount (a miscalibrated extrinsic).
+    ``settings`` (default :class:`SimulationSettings`), with ``changes`` to its fields
+    (``lidar_mode="depthbuffer"``, ``ray_drop=0.5``…); ``start`` POSIX seconds (default: the
+    scenario's start), ``duration`` seconds (default: to its end).
     """
     from seatwin.scenario.load import save_scenario
-    from seatwin.sensors.lidar import lidar_for_scenario
-    from seatwin.sensors.lidar_config import MILLIAMPERE_LIDAR_MOUNT, RangeDissipation, lidar_preset as preset
 
+    settings = validated(SimulationSettings, {**(settings or SimulationSettings()).model_dump(), **changes})
     run_dir = Path(run_dir)
-    check_format(fmt)
-    if scenario.ownship is None:
-        raise InputError(scenario.source, "the scenario has no ownship to carry the sensors")
     if (run_dir / MANIFEST_NAME).exists():
         raise InputError(run_dir, "a recording exists here already; choose a new run directory")
     t0, t1 = time_window(scenario.start, scenario.end, start, duration)
-    if seed is not None:
-        scenario = dataclasses.replace(scenario, seed=int(seed))
-    config = preset(lidar_preset)
-    if ray_drop is not None:
-        if not 0.0 <= ray_drop < 1.0:
-            raise InputError("--ray-drop", f"expected a probability in [0, 1), got {ray_drop!r}")
-        config = config.with_(drop_probability=float(ray_drop))
-    if range_noise is not None:
-        if range_noise < 0:
-            raise InputError("--range-noise", f"expected a non-negative σ in metres, got {range_noise!r}")
-        config = config.with_(range_accuracy=2.0 * float(range_noise))
-    if dissipation:
-        config = config.with_(dissipation=RangeDissipation())
-    if not np.isfinite(mount_yaw_bias_deg):
-        raise InputError("mount_yaw_bias_deg", f"expected a finite angle in degrees, got {mount_yaw_bias_deg!r}")
-    mount = dataclasses.replace(MILLIAMPERE_LIDAR_MOUNT, yaw_deg=MILLIAMPERE_LIDAR_MOUNT.yaw_deg + float(mount_yaw_bias_deg))
-    lidar = lidar_for_scenario(scenario, config=config, mount=mount, range_model=lidar_mode)
-    run_dir.mkdir(parents=True, exist_ok=True)
+    if settings.seed is not None:
+        scenario = dataclasses.replace(scenario, seed=int(settings.seed))
+    sensors = scenario_sensors(scenario, settings)
+    try:
+        run_dir.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(run_dir, f"cannot create the run directory: {exc.strerror or exc}") from None
     yaml_path, _ = save_scenario(scenario, run_dir / RESOLVED_SCENARIO)
-    sensors = [GroundTruthSensor(scenario, ground_truth_rate_hz), LidarSensor(lidar, recorded_mount=MILLIAMPERE_LIDAR_MOUNT)]
     return simulate(
-        sensors,
-        run_dir,
-        t0,
-        t1,
-        fmt=fmt,
-        progress=progress,
+        sensors, run_dir, t0, t1, fmt=settings.fmt, progress=progress,
         writer_kwargs={
             "origin": scenario.origin,
             "seed": scenario.seed,
             "scenario_file": yaml_path,
-            "metadata": {"scenario": scenario.name, "start": t0, "end": t1},
+            "metadata": {"scenario": scenario.name, "start": t0, "end": t1, "settings": settings.model_dump(mode="json")},
         },
     )

@@ -1,7 +1,9 @@
-"""What the loop steps: anything with a name, a rate, a phase and a ``record`` method.
+"""What the loop steps: a sensor names its frame times, captures a frame, and records it.
 
-A sensor's frame k happens at ``start + phase + k / rate``; ``record`` computes the frame and
-writes its messages. Cameras and radar plug in as further :class:`SimSensor` classes.
+``capture(t, frame)`` computes a frame at its own time (pure: no file is written);
+``record(writer, t, data)`` writes the captured frame's messages. Periodic sensors take their
+times from :func:`seatwin.sim.loop.periodic_times` (frame k at ``start + phase + k / rate``).
+Lidar, ground truth and radar (:mod:`seatwin.sim.radar`) plug in here; cameras come as further classes.
 """
 
 from __future__ import annotations
@@ -9,17 +11,23 @@ from __future__ import annotations
 from dataclasses import asdict
 from typing import Any, Protocol
 
+import numpy as np
+from numpy.typing import NDArray
+
 from seatwin.recording import RecordingWriter, StaticTransform, TopicConfig, poses_from_scenario
 from seatwin.recording.messages import quaternion_from_matrix
 from seatwin.scenario import Scenario
 from seatwin.sensors.lidar import Lidar
 from seatwin.sensors.lidar_config import LidarMount
+from seatwin.sim.timing import periodic_times
 
 
 class SimSensor(Protocol):
     name: str
-    rate_hz: float
-    phase_s: float
+
+    def frame_times(self, t0: float, t1: float) -> NDArray[np.float64]:
+        """POSIX times of this sensor's frames in [t0, t1), ascending; frame k is the k-th."""
+        ...
 
     def static_transforms(self, topics: TopicConfig) -> list[StaticTransform]:
         """Mount transforms for /tf_static."""
@@ -29,12 +37,26 @@ class SimSensor(Protocol):
         """What the manifest records about this sensor."""
         ...
 
-    def record(self, writer: RecordingWriter, t: float, frame: int) -> None:
-        """Compute frame ``frame`` at POSIX time ``t`` and write it."""
+    def capture(self, t: float, frame: int) -> Any:
+        """Compute frame ``frame`` at POSIX time ``t``."""
+        ...
+
+    def record(self, writer: RecordingWriter, t: float, data: Any) -> None:
+        """Write a frame ``capture`` returned."""
         ...
 
 
-class GroundTruthSensor:
+class Periodic:
+    """Frame times of a sensor with ``rate_hz`` and ``phase_s``."""
+
+    rate_hz: float
+    phase_s: float
+
+    def frame_times(self, t0: float, t1: float) -> NDArray[np.float64]:
+        return periodic_times(t0, t1, self.rate_hz, self.phase_s)
+
+
+class GroundTruthSensor(Periodic):
     """Ground truth of every vessel (PoseStamped, Odometry, NavSatFix of the ownship, /tf)."""
 
     def __init__(self, scenario: Scenario, rate_hz: float = 10.0, phase_s: float = 0.0, name: str = "ground_truth"):
@@ -46,11 +68,14 @@ class GroundTruthSensor:
     def parameters(self) -> dict[str, Any]:
         return {"kind": "ground_truth", "rate_hz": self.rate_hz, "phase_s": self.phase_s}
 
-    def record(self, writer: RecordingWriter, t: float, frame: int) -> None:
-        writer.write_ground_truth(t, poses_from_scenario(self.scenario, t))
+    def capture(self, t: float, frame: int) -> list:
+        return poses_from_scenario(self.scenario, t)
+
+    def record(self, writer: RecordingWriter, t: float, data: list) -> None:
+        writer.write_ground_truth(t, data)
 
 
-class LidarSensor:
+class LidarSensor(Periodic):
     """A spinning lidar on the ownship: one PointCloud2 per sweep, stamped at the sweep start.
 
     ``recorded_mount`` is the mount written to ``/tf_static`` and the manifest (default: the
@@ -88,7 +113,10 @@ class LidarSensor:
             **extra,
         }
 
-    def record(self, writer: RecordingWriter, t: float, frame: int) -> None:
-        s = self.lidar.sweep(t, frame)
+    def capture(self, t: float, frame: int) -> Any:
+        return self.lidar.sweep(t, frame)
+
+    def record(self, writer: RecordingWriter, t: float, data: Any) -> None:
+        s = data
         writer.write_sweep(writer.topics.topic("lidar", sensor=self.name), self.name, t,
                            s.x, s.y, s.z, s.intensity, s.ring, s.time)

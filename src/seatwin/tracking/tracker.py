@@ -13,12 +13,13 @@ step is a handful of vectorised numpy operations whatever the number of tracks.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
+from seatwin.errors import InputError
 from seatwin.perception.measurements import MeasurementKind, Scan, polar_to_cartesian
 from seatwin.tracking import ekf
 from seatwin.tracking.association import existence_posterior, gate_threshold, jipda_marginals
@@ -265,12 +266,40 @@ class JIPDATracker:
         )
 
     def run(self, scans: Iterable[Scan]) -> TrackTable:
-        """Process all scans; the concatenated track table."""
-        return TrackTable.concatenate([self.step(s) for s in scans])
+        """Process all scans (:func:`run_tracker`'s rule for same-instant scans); the track table."""
+        return run_tracker(self, scans).table
 
-    def iterate(self, scans: Iterable[Scan]) -> Iterator[TrackTable]:
-        for s in scans:
-            yield self.step(s)
+
+@dataclass
+class TrackRun:
+    """A tracker's output over a sequence of scans: the track table and the distinct scan instants."""
+
+    table: TrackTable
+    scan_times: NDArray[np.float64]
+
+
+def run_tracker(tracker: JIPDATracker, scans: Iterable[Scan], on_scan: Callable[[Scan], None] | None = None,
+                source: str = "<scans>") -> TrackRun:
+    """Run ``tracker`` over time-ordered ``scans``; the one rule for scans at the same instant.
+
+    Scans of several sensors at one instant are all processed, in the given order, and the
+    tracks are recorded once, after the last of them (one row per live track and instant).
+    Scans going back in time are an :class:`InputError` naming ``source``.
+    """
+    parts: list[TrackTable] = []
+    times: list[float] = []
+    for scan in scans:
+        if times and scan.time < times[-1]:
+            raise InputError(source, f"scans out of time order: {scan.time!r} after {times[-1]!r}")
+        table = tracker.step(scan)
+        if times and times[-1] == scan.time:
+            parts[-1] = table
+        else:
+            parts.append(table)
+            times.append(scan.time)
+        if on_scan is not None:
+            on_scan(scan)
+    return TrackRun(TrackTable.concatenate(parts), np.asarray(times, dtype=np.float64))
 
 
 def polar_or_cartesian(scan: Scan, z: Array) -> Array:

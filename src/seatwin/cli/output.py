@@ -1,0 +1,77 @@
+"""Command-line helpers shared by the verbs: list options, output paths checked before any work, progress."""
+
+from __future__ import annotations
+
+import contextlib
+import sys
+import time
+from collections.abc import Callable, Iterator
+from pathlib import Path
+
+from seatwin.errors import ParameterError
+
+
+def split_list(text: str | None, param: str) -> tuple[str, ...] | None:
+    """``"lidar,radar"`` → ``("lidar", "radar")``; None stays None; an empty list is an error naming ``param``."""
+    if text is None:
+        return None
+    parts = tuple(p.strip() for p in text.split(",") if p.strip())
+    if not parts:
+        raise ParameterError(param, f"expected a comma-separated list, got {text!r}")
+    return parts
+
+
+def check_output_file(path: Path, param: str) -> None:
+    """Refuse, before any work, an output file that is a folder or whose folder cannot be made."""
+    if path.is_dir():
+        raise ParameterError(param, f"{path} is a folder; expected a file name")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ParameterError(param, f"cannot create {path.parent}: {exc.strerror or exc}") from None
+
+
+def check_output_dir(path: Path, param: str) -> None:
+    """Refuse, before any work, an output folder that is a file or cannot be made."""
+    if path.exists() and not path.is_dir():
+        raise ParameterError(param, f"{path} exists and is not a folder")
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ParameterError(param, f"cannot create {path}: {exc.strerror or exc}") from None
+
+
+@contextlib.contextmanager
+def progress_counter(what: str, enabled: bool = True, min_total: int = 200,
+                     every_s: float = 10.0) -> Iterator[Callable[[int, int], None]]:
+    """``advance(done, total)``: a rich bar on a terminal; on a pipe or log a line every ``every_s`` seconds."""
+    if not enabled:
+        yield lambda done, total: None
+        return
+    if sys.stderr.isatty():
+        from rich.console import Console
+        from rich.progress import Progress
+
+        bar = Progress(console=Console(stderr=True), transient=True)
+        task = None
+        with bar:
+            def advance(done: int, total: int) -> None:
+                nonlocal task
+                if total < min_total:
+                    return
+                if task is None:
+                    task = bar.add_task(what, total=total)
+                bar.update(task, completed=done)
+
+            yield advance
+        return
+    last = time.monotonic()
+
+    def log(done: int, total: int) -> None:
+        nonlocal last
+        now = time.monotonic()
+        if now - last >= every_s or done == total and total >= min_total:
+            last = now
+            print(f"{what}: {done}/{total}", file=sys.stderr, flush=True)
+
+    yield log

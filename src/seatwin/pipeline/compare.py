@@ -1,0 +1,155 @@
+"""Compare a real and a synthetic dataset through the tracker (thesis 5.2): the use-case behind ``seatwin compare``.
+
+Each side is a track file or a recording (tracked with each tuning by :func:`track_recording`);
+both are associated with the same ground truth and compared per target (HED, COVDIFF, AHED).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from seatwin.errors import InputError, ParameterError
+from seatwin.pipeline.evaluate import check_overlap
+from seatwin.pipeline.track import track_recording
+
+if TYPE_CHECKING:
+    from seatwin.evaluation import CompareOptions, Comparison, Tracks, TruthSet
+
+TRACK_FILE_SUFFIXES = (".csv",)
+
+
+def is_track_file(spec: str | Path) -> bool:
+    return Path(spec).suffix.lower() in TRACK_FILE_SUFFIXES
+
+
+def load_run(spec: str | Path, tuning: str | None = None, keep_as: Path | None = None) -> Tracks:
+    """A track file as it is, or a recording tracked with ``tuning`` (its own default when None).
+
+    ``keep_as``: also write the tracks of a recording to this track file.
+    """
+    from seatwin.evaluation import read_tracks, write_tracks
+
+    path = Path(spec)
+    if is_track_file(path):
+        return read_tracks(path)
+    if not path.exists():
+        raise InputError(path, "no such track file (.csv) or recording")
+    tracks = track_recording(path, tuning=tuning).tracks
+    tracks.source = f"{path} (tracked, tuning {tuning or 'the recording default'})"
+    if keep_as is not None:
+        keep_as.parent.mkdir(parents=True, exist_ok=True)
+        write_tracks(keep_as, tracks)
+    return tracks
+
+
+def comparison_pairs(real: Sequence[str], synthetic: Sequence[str], tunings: Sequence[str]) -> list[tuple[str, str, str | None, str]]:
+    """(real, synthetic, tuning, label) per comparison; track files are used as given, recordings tracked per tuning."""
+    if len(real) != len(synthetic):
+        raise ParameterError("real", f"give as many real as synthetic datasets, got {len(real)} and {len(synthetic)}")
+    if not real:
+        raise ParameterError("real", "give at least one real and one synthetic dataset")
+    files = [is_track_file(p) for p in [*real, *synthetic]]
+    if len(real) == 1 and len(tunings) > 1:
+        if any(files):
+            raise ParameterError("tunings", f"{len(tunings)} tunings but a track file was already tracked with one "
+                                            "tuning; give one real/synthetic pair per tuning, or recordings")
+        return [(real[0], synthetic[0], t, t) for t in tunings]
+    if tunings and len(tunings) != len(real):
+        raise ParameterError("tunings", f"{len(tunings)} tunings for {len(real)} real/synthetic pairs")
+    if tunings:
+        return [(r, s, t, t) for r, s, t in zip(real, synthetic, tunings, strict=True)]
+    labels = [""] if len(real) == 1 else [f"pair{i + 1}" for i in range(len(real))]
+    return [(r, s, None, label) for r, s, label in zip(real, synthetic, labels, strict=True)]
+
+
+@dataclass
+class CompareResult:
+    """The comparisons (one per tuning or pair), their table, and what was written."""
+
+    real: list[str]
+    synthetic: list[str]
+    truth: str
+    comparisons: list[Comparison]
+    table: dict[str, Any]
+    report: Path | None = None
+    track_files: list[Path] = field(default_factory=list)
+
+    def to_json(self) -> dict[str, Any]:
+        """The JSON of ``seatwin compare --json``."""
+        return {"real": self.real, "synthetic": self.synthetic, "truth": self.truth, **self.table}
+
+
+def _clouds(real: str, synthetic: str, when: float, sensor: str, truth: TruthSet, relative: bool):  # noqa: ANN202
+    """Fig. 5.10 input: both recordings' clouds nearest ``when`` (POSIX, or seconds after the truth's start)."""
+    from seatwin.report import Clouds
+    from seatwin.report.clouds import cloud_at
+
+    for spec in (real, synthetic):
+        if is_track_file(spec):
+            raise ParameterError("clouds_at", f"{spec} is a track file; point clouds need recordings on both sides")
+    t = when + (min(tr.start for tr in truth.targets.values()) if relative else 0.0)
+    r, s = cloud_at(real, t, sensor), cloud_at(synthetic, t, sensor)
+    return Clouds(r.time, r.points, s.points, r.ownship, r.targets)
+
+
+def compare_runs(
+    real: Sequence[str | Path],
+    synthetic: Sequence[str | Path],
+    truth: str | Path,
+    *,
+    tunings: Sequence[str] = (),
+    options: CompareOptions | None = None,
+    report_dir: Path | None = None,
+    report_map: str = "harbour",
+    clouds_at: float | None = None,
+    clouds_relative: bool = False,
+    clouds_sensor: str = "lidar",
+    keep_tracks: Path | None = None,
+) -> CompareResult:
+    """Compare each real/synthetic pair against ``truth`` (scenario or recording), per tuning.
+
+    ``report_dir``: also write the HTML report there (land of ``report_map`` under the plots;
+    both datasets' clouds at ``clouds_at`` when given). ``keep_tracks``: write the track files
+    of tracked recordings into this folder.
+    """
+    from seatwin.evaluation import CompareOptions, compare, comparison_table, load_truth
+
+    options = options or CompareOptions()
+    real, synthetic = [str(p) for p in real], [str(p) for p in synthetic]
+    if clouds_at is not None and report_dir is None:
+        raise ParameterError("clouds_at", "the point clouds go into the report: give a report folder as well")
+    if clouds_sensor not in ("lidar", "radar"):
+        raise ParameterError("clouds_sensor", f"expected 'lidar' or 'radar', got {clouds_sensor!r}")
+    pairs = comparison_pairs(real, synthetic, list(tunings))
+    truth_set = load_truth(truth)
+    cache: dict[tuple[str, str | None], Tracks] = {}
+    kept: list[Path] = []
+
+    def run_of(spec: str, tuning: str | None, side: str) -> Tracks:  # a recording used twice is tracked once per tuning
+        if (spec, tuning) not in cache:
+            keep = None
+            if keep_tracks is not None and not is_track_file(spec):
+                keep = Path(keep_tracks) / f"{side}_{Path(spec).stem}_{tuning or 'default'}.csv"
+                kept.append(keep)
+            cache[(spec, tuning)] = load_run(spec, tuning, keep)
+        return cache[(spec, tuning)]
+
+    comparisons = []
+    for r, s, t, label in pairs:
+        run_r, run_s = run_of(r, t, "real"), run_of(s, t, "synthetic")
+        check_overlap(run_r, truth_set, r)
+        check_overlap(run_s, truth_set, s)
+        comparisons.append(compare(run_r, run_s, truth_set, tuning=label, options=options))
+    result = CompareResult(real, synthetic, str(truth), comparisons, comparison_table(comparisons), track_files=kept)
+    if report_dir is not None:
+        from seatwin.perception.map_mask import load_mask
+        from seatwin.report import write_comparison_report
+
+        clouds = [] if clouds_at is None else [_clouds(real[0], synthetic[0], clouds_at, clouds_sensor, truth_set,
+                                                        clouds_relative)]
+        result.report = write_comparison_report(report_dir, comparisons, truth_set, title=f"seatwin compare — {Path(truth).name}",
+                                                scenario=Path(truth).stem, mask=load_mask(report_map), clouds=clouds)
+    return result

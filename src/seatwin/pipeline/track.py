@@ -1,0 +1,143 @@
+"""Track a recording (or scans) with the JIPDA or GNN agent: the use-case behind ``seatwin track``.
+
+Recording → scans (lidar clustering, radar plots, land mask) → tracker → :class:`Tracks`. Every
+caller that tracks — the CLI, compare, the sweep, the fidelity method, benchmarks, tests — goes
+through :func:`track_scans`, which holds the one rule for scans at the same instant
+(:func:`seatwin.tracking.run_tracker`).
+"""
+
+from __future__ import annotations
+
+import time as _time
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Literal
+
+from pydantic import Field
+
+from seatwin.errors import InputError
+from seatwin.settings import Settings, validated
+
+if TYPE_CHECKING:
+    from seatwin.evaluation import Tracks
+    from seatwin.perception.measurements import Scan
+    from seatwin.tracking import TrackerConfig
+
+AGENTS = ("jipda", "gnn")
+
+
+class TrackOptions(Settings):
+    """How a recording is turned into measurements and tracked (defaults: the recording's own hints)."""
+
+    sensors: tuple[Literal["lidar", "radar", "camera"], ...] | None = Field(
+        None, description="Sensors to track with (default: the lidar and radar topics the recording has).")
+    tuning: str | None = Field(
+        None, description="Tracker tuning: a preset (synthetic, real, joyride, ravnkloa) or a YAML/JSON file "
+                          "(default: the recording's suggestion, else 'real').")
+    map_spec: str | None = Field(
+        None, description="Water mask for land/quay returns: 'harbour', 'none' or a raster (.yaml/.bin) "
+                          "(default: the recording's suggestion, else none).")
+    merge_distance: float | None = Field(
+        None, ge=0, description="Merge radar plots closer than this [m] (default: the recording's suggestion, else 0).")
+    radar_kind: Literal["range_bearing", "cartesian"] = Field(
+        "range_bearing", description="Measurement model of radar plots: range and bearing, or Cartesian north/east.")
+    eps: float = Field(1.5, gt=0, description="Lidar clustering distance [m].")
+    min_points: int = Field(3, ge=1, description="Smallest lidar cluster [points].")
+    agent: Literal["jipda", "gnn"] = Field("jipda", description="The tracker: JIPDA (thesis ch. 5.1) or GNN.")
+
+
+@dataclass
+class TrackingResult:
+    """What :func:`track_recording` produced, with what it used."""
+
+    tracks: Tracks
+    sensors: tuple[str, ...]
+    tuning: str
+    n_scans: int
+    n_tracks: int
+    n_confirmed: int
+    elapsed_s: float
+
+
+def track_scans(scans: Iterable[Scan], tuning: TrackerConfig | str, *, agent: str = "jipda", source: str = "<scans>",
+                on_scan: Callable[[Scan], None] | None = None) -> Tracks:
+    """Run a fresh ``agent`` (``jipda`` or ``gnn``) with ``tuning`` (config, preset name or file) over ``scans``."""
+    from seatwin.evaluation import Tracks
+    from seatwin.tracking import JIPDATracker, load_tuning, run_tracker
+    from seatwin.tracking.gnn import GNNTracker
+
+    if agent not in AGENTS:
+        from seatwin.errors import ParameterError
+
+        raise ParameterError("agent", f"expected one of {', '.join(AGENTS)}, got {agent!r}")
+    cfg = load_tuning(tuning) if isinstance(tuning, str) else tuning
+    tracker = JIPDATracker(cfg) if agent == "jipda" else GNNTracker(cfg)
+    run = run_tracker(tracker, scans, on_scan, source)
+    tab = run.table
+    return Tracks(tab.time, tab.track_id, tab.existence, tab.x, tab.P, tab.confirmed, scan_times=run.scan_times,
+                  source=f"{source} (tuning {cfg.name}, {agent})")
+
+
+def _hint_path(value: object, run_dir: Path | None) -> str | None:
+    """A map hint from the manifest: a preset name, or a path relative to the run directory."""
+    if value is None:
+        return None
+    text = str(value)
+    if text in ("harbour", "none"):
+        return text
+    p = Path(text)
+    return str(p if p.is_absolute() or run_dir is None else run_dir / p)
+
+
+def track_recording(recording: str | Path, options: TrackOptions | None = None, *,
+                    progress: Callable[[int, int], None] | None = None, **changes: Any) -> TrackingResult:
+    """Track ``recording`` (run directory, rosbag2 directory, .mcap/.db3/.bag) with ``options`` (+ field ``changes``).
+
+    ``progress(done, total)`` is called after every scan.
+    """
+    options = validated(TrackOptions, {**(options or TrackOptions()).model_dump(), **changes})
+    path = Path(recording)
+    if not path.exists():
+        raise InputError(path, "no such recording (a run directory, rosbag2 directory, or .mcap/.db3/.bag file)")
+    from seatwin.perception.from_recording import scans_from_recording
+    from seatwin.perception.lidar import LidarClustering
+    from seatwin.perception.map_mask import load_mask
+    from seatwin.perception.measurements import MeasurementKind
+    from seatwin.perception.radar import RadarPlots
+    from seatwin.recording import open_bag
+    from seatwin.tracking import load_tuning
+
+    t_start = _time.perf_counter()
+    with open_bag(path) as rec:
+        hints = ((rec.manifest or {}).get("metadata") or {}).get("tracking") or {}
+        cfg = load_tuning(options.tuning or hints.get("tuning") or "real")
+        mask = load_mask(options.map_spec if options.map_spec is not None else _hint_path(hints.get("map"), rec.run_dir))
+        merge = options.merge_distance if options.merge_distance is not None else float(hints.get("radar_merge", 0.0))
+        radar = RadarPlots(merge_distance=merge, kind=MeasurementKind(options.radar_kind))
+        wanted = options.sensors
+        if wanted is None:
+            present = []
+            if rec.radar_topics():
+                present.append("radar")
+            if len(rec.topics_of_type("sensor_msgs/msg/PointCloud2")) > len(rec.radar_topics()):
+                present.append("lidar")
+            wanted = tuple(present) or ("lidar", "radar")
+        for s in wanted:
+            if s != "camera":
+                cfg.sensor(s)  # the tuning must cover every sensor used
+        found = scans_from_recording(rec, wanted, mask=mask, lidar=LidarClustering(eps=options.eps, min_points=options.min_points),
+                                     radar=radar)
+        done = 0
+
+        def advance(_scan: Scan) -> None:
+            nonlocal done
+            done += 1
+            if progress is not None:
+                progress(done, found.total)
+
+        tracks = track_scans(found.scans, cfg, agent=options.agent, source=str(path), on_scan=advance)
+    import numpy as np
+
+    return TrackingResult(tracks, tuple(wanted), cfg.name, len(tracks.scan_times), len(np.unique(tracks.track_id)),
+                          len(np.unique(tracks.track_id[tracks.confirmed])), _time.perf_counter() - t_start)

@@ -1,0 +1,74 @@
+"""The marine radar as a :class:`seatwin.sim.sensors.SimSensor`: one rotation a frame, plots on the radar topic.
+
+Plots are written in the radar frame (REP-103: x forward, y left, z up; the mount on /tf_static
+is a ``flu`` frame at the antenna), with ``range`` [m], ``bearing`` [rad] clockwise from the bow
+(the layout's convention), ``time`` = seconds after the scan start at which the beam passed the
+plot's azimuth, and ``intensity`` the plot's peak echo (0–255).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from seatwin.recording import RecordingWriter, StaticTransform, TopicConfig, mount_rotation
+from seatwin.sensors.radar.config import RadarConfig
+from seatwin.sensors.radar.model import RadarModel, RadarScan
+from seatwin.sim.timing import TIME_EPS_S, periodic_times
+
+
+def radar_mount(config: RadarConfig, ownship: str, sensor: str, topics: TopicConfig) -> StaticTransform:
+    """The /tf_static mount of the radar frame on the ownship's body (FRD) frame."""
+    return StaticTransform(topics.body(ownship), sensor, (config.mount_x_m, config.mount_y_m, -config.antenna_height_m),
+                           mount_rotation("flu"))
+
+
+def write_scan(writer: RecordingWriter, scan: RadarScan, config: RadarConfig, sensor: str = "radar") -> None:
+    """Write one scan's plots on ``writer``'s radar topic for ``sensor`` in the radar frame."""
+    x = scan.range_m * np.cos(scan.azimuth)
+    y = -scan.range_m * np.sin(scan.azimuth)
+    writer.write_radar(
+        writer.topics.topic("radar", sensor=sensor), sensor, scan.time, x, y, np.zeros_like(x),
+        intensity=scan.intensity, range=scan.range_m, bearing=scan.azimuth,
+        time=scan.azimuth / (2 * np.pi) * config.rotation_period_s,
+    )
+
+
+class RadarSensor:
+    """``model`` on vessel ``ownship`` of ``scene``: a scan per rotation, or at the given ``times``.
+
+    ``times`` (POSIX, ascending) replays a real recording's scan instants (the fidelity replica);
+    ``with_spokes`` also keeps each rotation's raw spokes on the captured :class:`RadarScan`.
+    """
+
+    def __init__(self, model: RadarModel, scene: Any, ownship: str, *, times: Sequence[float] | None = None,
+                 phase_s: float = 0.0, with_spokes: bool | None = None, name: str = "radar"):
+        self.model, self.scene, self.ownship, self.name = model, scene, ownship, name
+        self.times = None if times is None else np.asarray(times, dtype=np.float64)
+        self.rate_hz = 1.0 / float(model.config.rotation_period_s)
+        self.phase_s = float(phase_s)
+        self.with_spokes = with_spokes
+
+    def frame_times(self, t0: float, t1: float) -> NDArray[np.float64]:
+        if self.times is None:
+            return periodic_times(t0, t1, self.rate_hz, self.phase_s)
+        rel = self.times - float(t0)
+        return self.times[(rel >= -TIME_EPS_S) & (rel < float(t1) - float(t0) - TIME_EPS_S)]
+
+    def static_transforms(self, topics: TopicConfig) -> list[StaticTransform]:
+        return [radar_mount(self.model.config, self.ownship, self.name, topics)]
+
+    def parameters(self) -> dict[str, Any]:
+        return {"kind": "radar", "rate_hz": self.rate_hz, "phase_s": self.phase_s, "seed": self.model.seed,
+                "carrier": self.ownship, "config": self.model.config.model_dump(mode="json", exclude={"fit"})}
+
+    def capture(self, t: float, frame: int) -> RadarScan:
+        from seatwin.sensors.radar.world import scan_scene
+
+        return scan_scene(self.model, self.scene, self.ownship, frame, t, with_spokes=self.with_spokes)
+
+    def record(self, writer: RecordingWriter, t: float, data: RadarScan) -> None:
+        write_scan(writer, data, self.model.config, sensor=self.name)

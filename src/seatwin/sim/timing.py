@@ -1,0 +1,39 @@
+"""Frame times of the loop, computed relative to the run's start (never with POSIX-sized margins)."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from seatwin.errors import ParameterError
+
+TIME_EPS_S = 1e-6
+"""Slack for comparing times *relative to the run's start* (float64 POSIX seconds are spaced 2.4e-7)."""
+
+
+def periodic_times(t0: float, t1: float, rate_hz: float, phase_s: float = 0.0) -> NDArray[np.float64]:
+    """Frame times ``t0 + phase + k / rate`` in [t0, t1), computed relative to ``t0`` (no POSIX-size margins)."""
+    if not rate_hz > 0:
+        raise ParameterError("rate_hz", f"a sensor needs a positive rate, got {rate_hz!r}")
+    span = float(t1) - float(t0)
+    rel = phase_s + np.arange(max(0, int(np.ceil((span - phase_s) * rate_hz)) + 1)) / rate_hz
+    return float(t0) + rel[(rel >= 0) & (rel < span - TIME_EPS_S)]
+
+
+def time_window(scenario_start: float, scenario_end: float, start: float | None,
+                duration: float | None) -> tuple[float, float]:
+    """The simulated interval [t0, t1) from POSIX ``start`` (default: the scenario's) for ``duration`` seconds.
+
+    Checked relative to the scenario's start, so float64 POSIX spacing (2.4e-7 s) never fails the last frame.
+    """
+    span = scenario_end - scenario_start
+    off = 0.0 if start is None else float(start) - scenario_start
+    if not -TIME_EPS_S <= off < span:
+        raise ParameterError("start", f"start {start!r} is outside the scenario's span [{scenario_start!r}, {scenario_end!r})")
+    off = max(off, 0.0)
+    if duration is not None and not duration > 0:
+        raise ParameterError("duration", f"expected a positive number of seconds, got {duration!r}")
+    rel_end = span if duration is None else off + float(duration)
+    if rel_end > span + TIME_EPS_S:
+        raise ParameterError("duration", f"start + duration ends {rel_end - span:g} s past the scenario's end")
+    return scenario_start + off, scenario_start + min(rel_end, span)
