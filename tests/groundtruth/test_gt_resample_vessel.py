@@ -1,4 +1,4 @@
-"""Common clock, resampling, vessel spec parsing and the per-vessel ground truth."""
+"""Common clock, resampling, vessel specs, parameter errors and the per-vessel ground truth."""
 
 from __future__ import annotations
 
@@ -18,6 +18,7 @@ from seatwin.groundtruth import (
     VesselSpec,
     build_vessel,
     common_clock,
+    compute_ground_truth,
     resample_log,
 )
 from seatwin.groundtruth.vessel import HEADING_ANTENNAS, HEADING_COG
@@ -93,6 +94,36 @@ def test_vessel_spec_checks_its_values() -> None:
         VesselSpec("Finn", (Path("a"), Path("b")), baseline_m=-1.0)
     # The command-line syntax NAME=BOW,STERN[,BASELINE_M] is parsed in the CLI (tests/cli/test_parsing.py).
     assert not hasattr(VesselSpec, "parse")
+
+
+BAD_SETTINGS = [
+    ({"vessels": []}, "vessels"),
+    ({"vessels": [VesselSpec("Finn", (Path("a.gpx"),)), VesselSpec("Finn", (Path("b.gpx"),))]}, "vessels"),
+    ({"eps_threshold_m": 0.0}, "eps_threshold_m"),
+    ({"max_gap_s": math.nan}, "max_gap_s"),
+    ({"smooth_s": -1.0}, "smooth_s"),
+    ({"min_cog_speed": -0.1}, "min_cog_speed"),
+    ({"meridian": "round"}, "meridian"),
+]
+
+
+@pytest.mark.parametrize(("kwargs", "param"), BAD_SETTINGS)
+def test_compute_ground_truth_errors_name_the_parameter(kwargs: dict, param: str) -> None:
+    args = {"vessels": [VesselSpec("Finn", (Path("a.gpx"), Path("b.gpx")))], "origin": O, **kwargs}
+    with pytest.raises(ParameterError) as exc:
+        compute_ground_truth(**args)
+    assert exc.value.param == param and str(exc.value).startswith(f"{param}: ")
+
+
+def test_every_parameter_error_maps_to_a_groundtruth_option() -> None:
+    import typer
+
+    from seatwin.cli.flags import flag_for
+    from seatwin.cli.main import app
+
+    options = {o for p in typer.main.get_command(app).commands["groundtruth"].params for o in p.opts}
+    for param in [p for _, p in BAD_SETTINGS] + ["rate_hz", "plots_dir"]:
+        assert flag_for(param) in options, param
 
 
 # ---------------------------------------------------------------- vessel ground truth

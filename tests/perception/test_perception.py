@@ -13,7 +13,7 @@ from seatwin.perception.frames import FLU_TO_FRD, Mount, quaternion_matrix, sens
 from seatwin.perception.lidar import LidarClustering, lidar_scan
 from seatwin.perception.map_mask import LayoutMask, NoMask, RasterMask, load_mask
 from seatwin.perception.radar import RadarPlots, radar_scan
-from seatwin.world.layout import DEFAULT_LAYOUT
+from seatwin.layout import DEFAULT_LAYOUT
 
 
 def test_polar_round_trip() -> None:

@@ -8,7 +8,7 @@ import pytest
 from seatwin.scenario import builtin_names, builtin_scenario, load_scenario
 from seatwin.scenario.model import Role, Scenario, VesselState
 from seatwin.scenario.summary import closest_approach
-from seatwin.world.layout import DEFAULT_LAYOUT, Box
+from seatwin.layout import DEFAULT_LAYOUT, Box
 
 REQUIRED = {
     "ferry_crossing",

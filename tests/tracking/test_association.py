@@ -86,7 +86,7 @@ def test_existence_posterior_hand_values() -> None:
 
 
 # ---- Stone Soup cross-check --------------------------------------------------------------
-stonesoup = pytest.importorskip("stonesoup")
+# Stone Soup is in the `test` extra; only these cross-checks need it (skip them, not the module).
 
 
 def _stonesoup_marginals(x0, P0, zs, dt_s, q, meas_model, updater_cls, pd, pg, lam, g):
@@ -143,6 +143,7 @@ def _problem(seed):
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_marginals_equal_stonesoup_jpda_cartesian(seed) -> None:
+    pytest.importorskip("stonesoup")
     from stonesoup.models.measurement.linear import LinearGaussian
     from stonesoup.updater.kalman import KalmanUpdater
 
@@ -157,6 +158,7 @@ def test_marginals_equal_stonesoup_jpda_cartesian(seed) -> None:
 
 @pytest.mark.parametrize("seed", [0, 3])
 def test_marginals_equal_stonesoup_jpda_range_bearing(seed) -> None:
+    pytest.importorskip("stonesoup")
     from stonesoup.models.measurement.nonlinear import CartesianToBearingRange
     from stonesoup.updater.kalman import ExtendedKalmanUpdater
 

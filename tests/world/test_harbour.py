@@ -9,7 +9,7 @@ import yaml
 from seatwin.engine import MeshData, make_caster
 from seatwin.errors import InputError
 from seatwin.world.harbour import build_harbour, harbour_from_layout, harbour_from_raster, merge_cells, read_land_raster
-from seatwin.world.layout import DEFAULT_LAYOUT
+from seatwin.layout import DEFAULT_LAYOUT
 
 
 def caster_of(objs):

@@ -29,21 +29,6 @@ def _clock(t: float | None) -> str:
     return dt.datetime.fromtimestamp(t, dt.timezone.utc).strftime("%H:%M:%S.%f")[:-4]
 
 
-def check_overlap(tracks, truth, source: str) -> None:  # noqa: ANN001
-    """An :class:`InputError` when no tracker instant falls inside any ground truth's time span."""
-    from seatwin.errors import InputError
-
-    if not len(tracks.scan_times) or not len(truth):
-        return
-    t0, t1 = float(tracks.scan_times[0]), float(tracks.scan_times[-1])
-    spans = [(tr.start, tr.end) for tr in truth.targets.values()]
-    if all(t1 < a or t0 > b for a, b in spans):
-        a = min(s[0] for s in spans)
-        b = max(s[1] for s in spans)
-        raise InputError(source, f"the tracks span [{t0!r}, {t1!r}] s but the ground truth spans [{a!r}, {b!r}] s: "
-                                 "no common time (same clock? same scenario?)")
-
-
 def register(app: typer.Typer) -> None:
     @app.command("evaluate", help=_HELP)
     def evaluate_cmd(
@@ -56,17 +41,12 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         import json
 
-        from seatwin.errors import InputError
-        from seatwin.evaluation import evaluate, load_truth, read_tracks
+        from seatwin.cli.output import check_output_file
+        from seatwin.pipeline.evaluate import evaluate_run
 
-        if not gate > 0:
-            raise InputError("--gate", f"must be positive, got {gate}")
-        if not 0 < confidence < 1:
-            raise InputError("--confidence", f"must lie in (0, 1), got {confidence}")
-        run = read_tracks(tracks)
-        truth_set = load_truth(truth)
-        check_overlap(run, truth_set, str(tracks))
-        result = evaluate(run, truth_set, gate=gate, confirmed_only=not all_tracks, confidence=confidence)
+        if json_out is not None:
+            check_output_file(json_out, "json_out")
+        result = evaluate_run(tracks, truth, gate=gate, confirmed_only=not all_tracks, confidence=confidence)
         typer.echo(f"{'target':<12} {'coverage':>8} {'first (UTC)':>14} {'last (UTC)':>14} {'switch':>6} {'RMSE':>8} {'RMSEpos':>8} "
                    f"{'ANEES':>9} {'bounds':>15}  verdict")
         for s in result.summaries:
@@ -77,6 +57,5 @@ def register(app: typer.Typer) -> None:
         if json_out is not None:
             data = {"tracks": str(tracks), "truth": str(truth), "confirmed_only": not all_tracks,
                     "confidence": confidence, **result.to_dict()}
-            json_out.parent.mkdir(parents=True, exist_ok=True)
             json_out.write_text(json.dumps(data, indent=2) + "\n")
             typer.echo(f"wrote {json_out}")

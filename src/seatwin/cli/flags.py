@@ -26,6 +26,9 @@ FLAG_OF: dict[str, str] = {
     "report_dir": "--report",
     "tunings": "--tuning",
     "real": "--real/--synthetic",
+    "plots_csv": "--out",
+    "run_dir": "--out-bag",
+    "radar_config": "--radar",
 }
 
 

@@ -15,41 +15,11 @@ _FIT_HELP = (
     "bootstrap over scans (standard error and 95 % interval). Writes a radar YAML with the report under 'fit'."
 )
 _SIM_HELP = (
-    "Simulate the radar along a scenario (built-in name or file) in its harbour: plots per rotation "
+    "Simulate the radar along a scenario (built-in name or file) in its harbour, in the same simulation loop as "
+    "'seatwin simulate --sensors radar': plots per rotation "
     "(CSV time,north,east,range_m,azimuth_rad,kind,object_id) or, with --out-bag, a recording with the "
     "plots on a radar topic. Bit-identical for the same --seed."
 )
-
-
-def _observations(recording: Path, truth: str | None, base, first_half: bool):  # noqa: ANN001, ANN202
-    import numpy as np
-
-    from seatwin.errors import InputError
-    from seatwin.sensors.radar.fit import RadarObservations
-
-    if recording.suffix.lower() == ".mat":
-        from seatwin.fidelity.joyride import load_joyride, observations
-
-        obs = observations(load_joyride(recording), base)
-    else:
-        from seatwin.evaluation import load_truth
-        from seatwin.perception.from_recording import scans_from_recording
-        from seatwin.recording import open_bag
-
-        with open_bag(recording) as rec:
-            scans = list(scans_from_recording(rec, ("radar",)).scans)
-        if not scans:
-            raise InputError(recording, "no radar scans in the recording")
-        ts = load_truth(truth if truth else recording)
-        times = np.array([s.time for s in scans])
-        states = ts.states_at(times)  # (J, n, 4)
-        obs = RadarObservations(
-            times, [s.positions() for s in scans], np.array([s.sensor_position for s in scans]),
-            np.transpose(states[:, :, [0, 2]], (1, 0, 2)), base.detection.area_ref_m2, str(recording),
-        )
-    if first_half:
-        obs = obs.subset(np.arange(len(obs) // 2))
-    return obs
 
 
 def register(app: typer.Typer) -> None:
@@ -68,17 +38,11 @@ def register(app: typer.Typer) -> None:
         first_half: bool = typer.Option(False, "--first-half", help="Fit on the first half of the scans only."),
         seed: int = typer.Option(0, "--seed", help="Seed of the bootstrap."),
     ) -> None:
-        from seatwin.errors import InputError
-        from seatwin.sensors.radar.config import RadarConfig, load_radar_config, save_radar_config
-        from seatwin.sensors.radar.fit import fit_radar
+        from seatwin.pipeline.radar import fit_radar_to_recording
+        from seatwin.sensors.radar.config import save_radar_config
 
-        if not recording.exists():
-            raise InputError(recording, "no such file or directory")
-        if clutter not in ("uniform", "map"):
-            raise InputError("--clutter", f"expected 'uniform' or 'map', got {clutter!r}")
-        cfg = load_radar_config(base) if base else RadarConfig()
-        obs = _observations(recording, truth, cfg, first_half)
-        res = fit_radar(obs, cfg, gate_m=gate, n_boot=boot, seed=seed, clutter=clutter)
+        res, obs = fit_radar_to_recording(recording, truth=truth, base=base, first_half=first_half, gate=gate, boot=boot,
+                                          clutter=clutter, seed=seed)
         save_radar_config(res.config, out)
         est = res.report["estimates"]
 
@@ -104,58 +68,10 @@ def register(app: typer.Typer) -> None:
         spokes_dir: Path = typer.Option(None, "--spokes-dir", metavar="DIR", help="Also write each rotation's raw spokes (Gemini RadarStreamingRequest fields) as DIR/scan_NNNNNN.npz."),
         config: Path = typer.Option(None, "--radar", metavar="RADAR.yaml", help="Radar configuration (default: built-in)."),
         seed: int = typer.Option(None, "--seed", help="Seed of the random draws (default: the scenario's)."),
-        duration: float = typer.Option(None, "--duration", min=0.0, help="Simulate only the first SECONDS."),
+        duration: float = typer.Option(None, "--duration", min=0.0, help="Simulate only the first SECONDS (rotations in [start, start + SECONDS))."),
     ) -> None:
-        import contextlib
-        import csv
+        from seatwin.pipeline.radar import simulate_radar
 
-        from seatwin.errors import InputError
-        from seatwin.scenario.load import load_scenario
-        from seatwin.sensors.radar.config import RadarConfig, load_radar_config
-        from seatwin.sensors.radar.model import RadarModel
-        from seatwin.sensors.radar.plots import KIND_NAMES
-        from seatwin.sensors.radar.world import scan_scene, scan_times
-        from seatwin.world.scene import Scene
-
-        if out is None and out_bag is None and spokes_dir is None:
-            raise InputError("--out", "give --out PLOTS.csv, --out-bag RUN_DIR and/or --spokes-dir DIR")
-        sc = load_scenario(scenario)
-        if sc.ownship is None:
-            raise InputError(scenario, "the scenario has no ownship to carry the radar")
-        cfg = load_radar_config(config) if config else RadarConfig()
-        model = RadarModel(cfg, seed=sc.seed if seed is None else seed)
-        scene = Scene.from_scenario(sc)
-        end = sc.end if duration is None else min(sc.end, sc.start + duration)
-        n = k = 0
-        with contextlib.ExitStack() as stack:
-            w = None
-            if out is not None:
-                out.parent.mkdir(parents=True, exist_ok=True)
-                w = csv.writer(stack.enter_context(out.open("w", newline="")))
-                w.writerow(["time", "north", "east", "range_m", "azimuth_rad", "kind", "object_id"])
-            bag = None
-            if out_bag is not None:
-                from seatwin.recording import open_recording, poses_from_scenario
-                from seatwin.sensors.radar.record import radar_mount, write_scan
-
-                bag = stack.enter_context(open_recording(out_bag, fmt, seed=model.seed, origin=sc.origin,
-                                                         sensors={"radar": cfg.model_dump(mode="json", exclude={"fit"})}))
-                bag.write_static_transforms(sc.start, [radar_mount(cfg, sc.ownship.name)])
-            for k, t in enumerate(scan_times(sc.start, end, cfg.rotation_period_s)):
-                s = scan_scene(model, scene, sc.ownship.name, k, float(t), with_spokes=spokes_dir is not None)
-                if spokes_dir is not None:
-                    import numpy as np
-
-                    spokes_dir.mkdir(parents=True, exist_ok=True)
-                    req = s.spokes.to_request_dict()
-                    req["radar_spokes"] = s.spokes.intensities
-                    np.savez_compressed(spokes_dir / f"scan_{k:06d}.npz", **{key: np.asarray(v) for key, v in req.items()})
-                if w is not None:
-                    for i in range(len(s)):
-                        w.writerow([repr(float(t)), f"{s.north[i]:.3f}", f"{s.east[i]:.3f}", f"{s.range_m[i]:.3f}",
-                                    f"{s.azimuth[i]:.6f}", KIND_NAMES[int(s.kind[i])], int(s.object_id[i])])
-                if bag is not None:
-                    bag.write_ground_truth(float(t), poses_from_scenario(sc, float(t)))
-                    write_scan(bag, s, cfg)
-                n += len(s)
-        typer.echo(f"simulated {k + 1} radar scans, {n} plots" + "".join(f" → {p}" for p in (out, out_bag, spokes_dir) if p))
+        result = simulate_radar(scenario, plots_csv=out, run_dir=out_bag, spokes_dir=spokes_dir,
+                                radar_config=str(config) if config else None, seed=seed, duration=duration, fmt=fmt)
+        typer.echo(f"simulated {result.n_scans} radar scans, {result.n_plots} plots" + "".join(f" → {p}" for p in result.outputs))

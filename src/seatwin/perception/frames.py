@@ -13,29 +13,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from seatwin.geo.frames import FLU_TO_FRD, quaternion_matrix, yaw_matrix
+
 Array = NDArray[np.float64]
-
-
-def quaternion_matrix(q: ArrayLike) -> Array:
-    """Rotation matrix of a unit quaternion (x, y, z, w)."""
-    x, y, z, w = np.asarray(q, dtype=float) / np.linalg.norm(q)
-    return np.array(
-        [
-            [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
-        ]
-    )
-
-
-def yaw_matrix(heading: float) -> Array:
-    """Body FRD → world NED for a vessel with ``heading`` (rad, clockwise from north)."""
-    c, s = np.cos(heading), np.sin(heading)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-
-
-FLU_TO_FRD = np.diag([1.0, -1.0, -1.0])
-"""A REP-103 sensor frame (x forward, y left, z up) mounted straight ahead, seen in the body FRD frame."""
 
 
 @dataclass(frozen=True)

@@ -1,6 +1,6 @@
 """Land/water masks: which world points lie on open water (the rest is land, quay or pier).
 
-* :class:`LayoutMask` — the built-in harbour (:data:`seatwin.world.layout.DEFAULT_LAYOUT`),
+* :class:`LayoutMask` — the built-in harbour (:data:`seatwin.layout.DEFAULT_LAYOUT`),
   vectorised.
 * :class:`RasterMask` — a land/water raster in the Ravnkloa base-map format: ``NAME.yaml``
   (``map_width``, ``map_height``, ``grid_resolution``, ``origin_x_coordinate`` = east of
@@ -19,7 +19,7 @@ import yaml
 from numpy.typing import ArrayLike, NDArray
 
 from seatwin.errors import InputError
-from seatwin.world.layout import DEFAULT_LAYOUT, HarbourLayout
+from seatwin.layout import DEFAULT_LAYOUT, HarbourLayout
 
 
 class NoMask:
@@ -31,17 +31,12 @@ class NoMask:
 
 @dataclass(frozen=True)
 class LayoutMask:
-    """Vectorised :meth:`HarbourLayout.is_water` (same rule: inside the channel, not under a pier)."""
+    """:meth:`HarbourLayout.is_water` as a mask (inside the channel, not under a pier)."""
 
     layout: HarbourLayout = DEFAULT_LAYOUT
 
     def is_water(self, north: ArrayLike, east: ArrayLike) -> NDArray[np.bool_]:
-        n, e = np.broadcast_arrays(np.asarray(north, float), np.asarray(east, float))
-        lay = self.layout
-        water = (lay.north_min <= n) & (n <= lay.north_max) & (np.abs(e) < lay.half_width)
-        for p in lay.piers:
-            water &= ~((p.north_min <= n) & (n <= p.north_max) & (p.east_min <= e) & (e <= p.east_max))
-        return water
+        return np.asarray(self.layout.is_water(north, east), dtype=bool)
 
 
 @dataclass(frozen=True)

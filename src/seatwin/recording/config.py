@@ -10,7 +10,7 @@ import re
 from dataclasses import asdict, dataclass, fields
 from typing import Any, Literal
 
-from seatwin.errors import InputError
+from seatwin.errors import InputError, ParameterError
 
 BagFormat = Literal["mcap", "sqlite3", "ros1"]
 FORMATS: tuple[str, ...] = ("mcap", "sqlite3", "ros1")
@@ -81,8 +81,8 @@ class TopicConfig:
         return cls(**data)
 
 
-def check_format(fmt: str, source: str = "--format") -> BagFormat:
-    """Validate a bag format name."""
+def check_format(fmt: str, param: str = "fmt") -> BagFormat:
+    """Validate a bag format name (a :class:`ParameterError` naming ``param`` otherwise)."""
     if fmt not in FORMATS:
-        raise InputError(source, f"unknown bag format {fmt!r}; expected one of {', '.join(FORMATS)}")
+        raise ParameterError(param, f"unknown bag format {fmt!r}; expected one of {', '.join(FORMATS)}")
     return fmt  # type: ignore[return-value]

@@ -19,7 +19,7 @@ from rosbags.typesys import Stores, get_typestore
 from rosbags.typesys.store import Typestore
 
 from seatwin.errors import InputError
-from seatwin.geo import GeodeticOrigin, ned_to_llh_exact
+from seatwin.geo import NED_TO_ENU, GeodeticOrigin, mount_matrix, ned_to_llh_exact
 from seatwin.recording.pointcloud import Layout
 
 _STORES: dict[str, Typestore] = {}
@@ -84,14 +84,8 @@ def quaternion_from_matrix(r: NDArray[np.float64]) -> tuple[float, float, float,
     return float(x), float(y), float(z), float(w)
 
 
-R_ENU_NED = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
+R_ENU_NED = NED_TO_ENU
 """Maps NED coordinates to ENU: the rotation of the ``world_ned`` frame in the ``world`` (ENU) frame."""
-
-_BASES = {
-    "flu": np.diag([1.0, -1.0, -1.0]),  # REP-103 sensor frame (x fwd, y left, z up) → body FRD
-    "frd": np.eye(3),
-    "optical": np.array([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]),  # z fwd, x right, y down
-}
 
 
 def mount_rotation(convention: str = "flu", roll: float = 0.0, pitch: float = 0.0, yaw: float = 0.0) -> tuple[float, float, float, float]:
@@ -100,14 +94,9 @@ def mount_rotation(convention: str = "flu", roll: float = 0.0, pitch: float = 0.
     The sensor is first turned by yaw (to starboard), pitch (nose up), roll (starboard down) —
     Z-Y-X Euler angles in the body FRD frame — and its axes follow ``convention``: ``flu``
     (REP-103 lidar/radar: x forward, y left, z up), ``optical`` (camera: z forward, x right,
-    y down) or ``frd``.
+    y down) or ``frd`` (the matrix: :func:`seatwin.geo.mount_matrix`).
     """
-    from scipy.spatial.transform import Rotation
-
-    if convention not in _BASES:
-        raise ValueError(f"unknown frame convention {convention!r}; expected one of {sorted(_BASES)}")
-    r = Rotation.from_euler("ZYX", [yaw, pitch, roll]).as_matrix() @ _BASES[convention]
-    return quaternion_from_matrix(r)
+    return quaternion_from_matrix(mount_matrix(convention, roll=roll, pitch=pitch, yaw=yaw))
 
 
 @dataclass(frozen=True)
@@ -210,6 +199,19 @@ class VesselPose:
     yaw_rate: float = 0.0
     """rad/s, positive clockwise seen from above."""
     ownship: bool = False
+    llh: tuple[float, float, float] | None = None
+    """WGS-84 (latitude °, longitude °, height m) of this position when the caller converted it
+    already (e.g. a whole run at once); otherwise the NavSatFix converts with the origin."""
+
+
+def vessel_llh(v: VesselPose, origin: GeodeticOrigin | None) -> tuple[float, float, float]:
+    """The vessel's WGS-84 position: its ``llh``, else exact NED → LLH about ``origin``."""
+    if v.llh is not None:
+        return v.llh
+    if origin is None:
+        raise InputError("NavSatFix", f"vessel {v.name!r}: a geodetic origin (or the pose's llh) is needed")
+    lat, lon, alt = ned_to_llh_exact(v.north, v.east, v.down, origin)
+    return float(lat), float(lon), float(alt)
 
 
 def pose_stamped(store: Typestore, t: float, world_frame: str, v: VesselPose) -> Any:
@@ -247,10 +249,10 @@ def odometry(store: Typestore, t: float, world_frame: str, body_frame: str, v: V
     )
 
 
-def nav_sat_fix(store: Typestore, t: float, frame_id: str, v: VesselPose, origin: GeodeticOrigin) -> Any:
-    """``sensor_msgs/NavSatFix`` of the vessel's reference point (exact NED → WGS-84 LLH)."""
+def nav_sat_fix(store: Typestore, t: float, frame_id: str, v: VesselPose, origin: GeodeticOrigin | None) -> Any:
+    """``sensor_msgs/NavSatFix`` of the vessel's reference point (:func:`vessel_llh`)."""
     T = store.types
-    lat, lon, alt = ned_to_llh_exact(v.north, v.east, v.down, origin)
+    lat, lon, alt = vessel_llh(v, origin)
     NSS = T["sensor_msgs/msg/NavSatStatus"]
     return T["sensor_msgs/msg/NavSatFix"](
         header=header(store, t, frame_id),

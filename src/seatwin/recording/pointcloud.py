@@ -7,6 +7,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -112,6 +113,15 @@ def pack(layout: Layout, **columns: ArrayLike) -> NDArray[np.uint8]:
 
     All given columns must have the same length; padding bytes are zero.
     """
+    arrays, n = checked_columns(layout, columns)
+    out = np.zeros(n, dtype=layout.dtype)
+    fill(out, arrays)
+    return out.view(np.uint8)
+
+
+def checked_columns(layout: Layout, columns: dict[str, ArrayLike | None]) -> tuple[dict[str, NDArray[Any]], int]:
+    """The given (not None) columns as arrays, and their common length; an :class:`InputError` for
+    unknown fields, columns of different lengths, or integers out of their field's range."""
     dtype = layout.dtype
     unknown = sorted(set(columns) - set(dtype.names or ()))
     if unknown:
@@ -121,7 +131,6 @@ def pack(layout: Layout, **columns: ArrayLike) -> NDArray[np.uint8]:
     if len(set(sizes.values())) > 1:
         raise InputError("point cloud", f"columns differ in length: {sizes}")
     n = next(iter(sizes.values()), 0)
-    out = np.zeros(n, dtype=dtype)
     for k, a in arrays.items():
         kind = dtype[k].base
         if kind.kind in "iu" and n:
@@ -129,8 +138,14 @@ def pack(layout: Layout, **columns: ArrayLike) -> NDArray[np.uint8]:
             lo, hi = a.min(), a.max()
             if lo < info.min or hi > info.max or (a.dtype.kind == "f" and not np.isfinite(a).all()):
                 raise InputError("point cloud", f"field {k!r} ({kind.name}) needs values in [{info.min}, {info.max}], got [{lo}, {hi}]")
-        out[k] = a.reshape(n)
-    return out.view(np.uint8)
+    return arrays, n
+
+
+def fill(points: NDArray[Any], arrays: dict[str, NDArray[Any]]) -> None:
+    """Write checked columns (:func:`checked_columns`) into a zeroed structured array of the layout."""
+    n = len(points)
+    for k, a in arrays.items():
+        points[k] = a.reshape(n)
 
 
 def unpack(

@@ -2,7 +2,7 @@
 
 Every built-in has the ownship milliAmpere (a ferry, 1–2 m/s) and the two target boats
 Havfruen and Finn (2–5 m/s), sampled at 10 Hz from a fixed POSIX start on the day of the
-thesis experiments, in :data:`~seatwin.world.layout.DEFAULT_LAYOUT` (a north–south channel,
+thesis experiments, in :data:`~seatwin.layout.DEFAULT_LAYOUT` (a north–south channel,
 water for |east| < 75 m). Paths are lines and arcs (:mod:`seatwin.scenario.motion`), so
 headings are continuous and point along the motion; all vessels stay on water throughout
 (``tests/scenario/test_builtin.py`` checks the hull corners against the layout).

@@ -12,9 +12,10 @@ from pathlib import Path
 import numpy as np
 
 from seatwin.errors import InputError
+from seatwin.geo.frames import yaw_matrix
 from seatwin.scenario.model import Role, Scenario
 from seatwin.scenario.summary import water_fraction
-from seatwin.world.layout import DEFAULT_LAYOUT, HarbourLayout
+from seatwin.layout import DEFAULT_LAYOUT, HarbourLayout
 
 LAND = "#d9d2c3"
 WATER = "#e3f0fa"
@@ -31,9 +32,8 @@ def _draw_harbour(ax, layout: HarbourLayout) -> None:  # type: ignore[no-untyped
         ax.add_patch(Rectangle((box.east_min, box.north_min), box.east_max - box.east_min, box.north_max - box.north_min,
                                facecolor="#a89f8c", edgecolor="#6f6757", lw=0.6, zorder=1))
     for boat in layout.moored_boats:
-        h = np.radians(boat.heading_deg)
-        fwd, stb = np.array([np.cos(h), np.sin(h)]), np.array([-np.sin(h), np.cos(h)])
-        corners = [(a * boat.length / 2) * fwd + (b * boat.beam / 2) * stb for a, b in ((1, 1), (1, -1), (-1, -1), (-1, 1))]
+        rot = yaw_matrix(np.radians(boat.heading_deg))[:2, :2]  # body (forward, starboard) → (north, east)
+        corners = [rot @ (a * boat.length / 2, b * boat.beam / 2) for a, b in ((1, 1), (1, -1), (-1, -1), (-1, 1))]
         xy = [(boat.east + c[1], boat.north + c[0]) for c in corners]
         ax.add_patch(Polygon(xy, closed=True, facecolor="#8c8c8c", edgecolor="none", zorder=1))
 

@@ -9,13 +9,13 @@ from typing import Any
 import numpy as np
 
 from seatwin.scenario.model import Scenario, Trajectory
-from seatwin.world.layout import DEFAULT_LAYOUT
+from seatwin.layout import DEFAULT_LAYOUT
 
 
 def water_fraction(north: np.ndarray, east: np.ndarray) -> float:
     """Fraction of the points on the default harbour's open water."""
-    on = [DEFAULT_LAYOUT.is_water(float(n), float(e)) for n, e in zip(north, east)]
-    return float(np.mean(on)) if on else 0.0
+    on = np.asarray(DEFAULT_LAYOUT.is_water(north, east), dtype=bool)
+    return float(on.mean()) if on.size else 0.0
 
 
 def closest_approach(a: Trajectory, b: Trajectory, start: float | None = None, end: float | None = None) -> tuple[float, float]:

@@ -23,6 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seatwin.errors import InputError
+from seatwin.geo.angles import circular_mean, wrap_to_pi
 from seatwin.rng import frame_rng
 from seatwin.scenario.model import Scenario
 from seatwin.sensors.lidar_config import MILLIAMPERE_LIDAR_MOUNT, VLP16, LidarConfig, LidarMount
@@ -65,8 +66,8 @@ def _column_bearings(d_body: NDArray[np.float32], rings: int) -> tuple[NDArray[n
     """Per column: the middle bearing of its beams (body frame) and half their spread."""
     d = d_body.reshape(-1, rings, 3).astype(np.float64)
     az = np.arctan2(d[..., 1], d[..., 0])
-    mid = np.arctan2(np.sin(az).sum(1), np.cos(az).sum(1))
-    spread = np.abs((az - mid[:, None] + np.pi) % (2 * np.pi) - np.pi).max(1)
+    mid = circular_mean(az, axis=1)
+    spread = np.abs(wrap_to_pi(az - mid[:, None])).max(1)
     vertical = np.hypot(d[..., 0], d[..., 1]).min(1) < 1e-6
     spread[vertical] = np.pi
     return mid, spread

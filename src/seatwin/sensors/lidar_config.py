@@ -14,6 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seatwin.errors import InputError
+from seatwin.geo.frames import mount_matrix
 from seatwin.world.vessels import MILLIAMPERE_LIDAR_HEIGHT
 
 
@@ -152,14 +153,9 @@ class LidarMount:
         return np.array([self.x, self.y, self.z])
 
     def rotation(self) -> NDArray[np.float64]:
-        """R such that ``v_body = R @ v_sensor``."""
-        upright = np.diag([1.0, -1.0, -1.0])  # REP-103 sensor axes in the NED-like body frame
+        """R such that ``v_body = R @ v_sensor`` (REP-103 sensor axes, :func:`seatwin.geo.mount_matrix`)."""
         r, p, y = np.radians([self.roll_deg, self.pitch_deg, self.yaw_deg])
-        rx = np.array([[1, 0, 0], [0, np.cos(r), -np.sin(r)], [0, np.sin(r), np.cos(r)]])
-        # Rotation about the body y axis (starboard): positive turns the x axis up (−z).
-        ry = np.array([[np.cos(p), 0, np.sin(p)], [0, 1, 0], [-np.sin(p), 0, np.cos(p)]])
-        rz = np.array([[np.cos(y), -np.sin(y), 0], [np.sin(y), np.cos(y), 0], [0, 0, 1]])
-        return rz @ ry @ upright @ rx
+        return mount_matrix("flu", roll=r, pitch=p, yaw=y)
 
 
 MILLIAMPERE_LIDAR_MOUNT = LidarMount(x=0.0, y=0.0, z=-MILLIAMPERE_LIDAR_HEIGHT, yaw_deg=57.3, roll_deg=180.0)

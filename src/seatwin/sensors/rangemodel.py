@@ -23,6 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seatwin.errors import InputError
+from seatwin.geo.angles import wrap_to_pi
 from seatwin.world.scene import Scene
 
 
@@ -155,7 +156,7 @@ def raycast_ranges(scene: Scene, batch: BeamBatch) -> BeamRanges:
         if dist - grow > reach:
             continue
         half = np.pi if dist <= grow else float(np.arcsin(grow / dist))
-        off = np.abs((batch.column_bearing - np.arctan2(mid[1], mid[0]) + np.pi) % (2 * np.pi) - np.pi)
+        off = np.abs(wrap_to_pi(batch.column_bearing - np.arctan2(mid[1], mid[0])))
         cols = np.flatnonzero(off <= half + batch.column_halfwidth + 1e-6)
         if not cols.size:
             continue

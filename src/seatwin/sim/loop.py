@@ -62,10 +62,12 @@ def simulate(
     topics: Any = None,
     writer_kwargs: dict | None = None,
     progress: bool | Callable[[float, float], None] = True,
+    on_frame: Callable[[SimSensor, float, int, Any], None] | None = None,
 ) -> SimulationResult:
     """Run ``sensors`` over [t0, t1) into a new recording in ``run_dir``.
 
-    ``progress``: True for a progress bar, False for none, or a callback ``(simulated_s, wall_s)``.
+    ``progress``: True for a progress bar, False for none, or a callback ``(simulated_s, wall_s)``;
+    ``on_frame(sensor, t, frame, data)`` sees every captured frame too (e.g. to export it).
     """
     from seatwin.recording import RecordingWriter
 
@@ -79,8 +81,10 @@ def simulate(
     try:
         writer.write_static_transforms(t0, [m for s in sensors for m in s.static_transforms(writer.topics)])
         with _progress(progress, t1 - t0) as advance:
-            for t, i, _, data in frames(sensors, t0, t1):
+            for t, i, k, data in frames(sensors, t0, t1):
                 sensors[i].record(writer, t, data)
+                if on_frame is not None:
+                    on_frame(sensors[i], t, k, data)
                 counts[sensors[i].name] += 1
                 done_t = t
                 advance(t - t0, _time.perf_counter() - wall0)

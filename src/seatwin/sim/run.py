@@ -19,10 +19,15 @@ from seatwin.sim.timing import time_window
 RESOLVED_SCENARIO = "scenario.yaml"
 
 
+def seeded(scenario: Scenario, settings: SimulationSettings) -> Scenario:
+    """``scenario`` with the run's seed (``settings.seed`` when given)."""
+    return scenario if settings.seed is None else dataclasses.replace(scenario, seed=int(settings.seed))
+
+
 def scenario_sensors(scenario: Scenario, settings: SimulationSettings) -> list[SimSensor]:
     """Ground truth and the ownship's sensors of ``settings.sensors``, all in one scene built once.
 
-    ``scenario`` already carries the run's seed. The lidar's ``mount_yaw_bias_deg`` turns the
+    Random draws are keyed by :func:`seeded`'s seed. The lidar's ``mount_yaw_bias_deg`` turns the
     simulated mount while /tf_static records the nominal one (a miscalibrated extrinsic).
     """
     from seatwin.sensors.lidar import lidar_for_scenario
@@ -31,6 +36,7 @@ def scenario_sensors(scenario: Scenario, settings: SimulationSettings) -> list[S
 
     if scenario.ownship is None:
         raise InputError(scenario.source, "the scenario has no ownship to carry the sensors")
+    scenario = seeded(scenario, settings)
     scene = Scene.from_scenario(scenario)
     sensors: list[SimSensor] = [GroundTruthSensor(scenario, settings.ground_truth_rate_hz)]
     if "lidar" in settings.sensors:
@@ -51,7 +57,8 @@ def scenario_sensors(scenario: Scenario, settings: SimulationSettings) -> list[S
         from seatwin.sim.radar import RadarSensor
 
         cfg = load_radar_config(settings.radar_config) if settings.radar_config else RadarConfig()
-        sensors.append(RadarSensor(RadarModel(cfg, seed=scenario.seed), scene, scenario.ownship.name))
+        sensors.append(RadarSensor(RadarModel(cfg, seed=scenario.seed), scene, scenario.ownship.name,
+                                   with_spokes=settings.radar_spokes))
     return sensors
 
 
@@ -63,13 +70,14 @@ def simulate_scenario(
     start: float | None = None,
     duration: float | None = None,
     progress: bool | Callable[[float, float], None] = True,
+    on_frame: Callable[[SimSensor, float, int, Any], None] | None = None,
     **changes: Any,
 ) -> SimulationResult:
     """Simulate the ownship's sensors along ``scenario`` into a new recording in ``run_dir``.
 
     ``settings`` (default :class:`SimulationSettings`), with ``changes`` to its fields
     (``lidar_mode="depthbuffer"``, ``ray_drop=0.5``…); ``start`` POSIX seconds (default: the
-    scenario's start), ``duration`` seconds (default: to its end).
+    scenario's start), ``duration`` seconds (default: to its end); ``on_frame`` as in :func:`simulate`.
     """
     from seatwin.scenario.load import save_scenario
 
@@ -78,8 +86,7 @@ def simulate_scenario(
     if (run_dir / MANIFEST_NAME).exists():
         raise InputError(run_dir, "a recording exists here already; choose a new run directory")
     t0, t1 = time_window(scenario.start, scenario.end, start, duration)
-    if settings.seed is not None:
-        scenario = dataclasses.replace(scenario, seed=int(settings.seed))
+    scenario = seeded(scenario, settings)
     sensors = scenario_sensors(scenario, settings)
     try:
         run_dir.mkdir(parents=True, exist_ok=True)
@@ -87,7 +94,7 @@ def simulate_scenario(
         raise InputError(run_dir, f"cannot create the run directory: {exc.strerror or exc}") from None
     yaml_path, _ = save_scenario(scenario, run_dir / RESOLVED_SCENARIO)
     return simulate(
-        sensors, run_dir, t0, t1, fmt=settings.fmt, progress=progress,
+        sensors, run_dir, t0, t1, fmt=settings.fmt, progress=progress, on_frame=on_frame,
         writer_kwargs={
             "origin": scenario.origin,
             "seed": scenario.seed,

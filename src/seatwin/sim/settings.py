@@ -35,6 +35,8 @@ class SimulationSettings(Settings):
         0.0, description="Lidar turned by this much more than its nominal mount while /tf_static records the nominal "
                          "one (a miscalibrated extrinsic) [deg].")
     radar_config: str | None = Field(None, description="Radar YAML (default: the built-in radar model).")
+    radar_spokes: bool = Field(False, description="Keep each radar rotation's raw spokes (Gemini RadarStreamingRequest "
+                                                   "layout) on the captured frames, for export or streaming.")
     fmt: Literal["mcap", "sqlite3", "ros1"] = Field("mcap", description="Bag format.")
     ground_truth_rate_hz: float = Field(10.0, gt=0, description="Rate of the ground-truth topics [Hz].")
 

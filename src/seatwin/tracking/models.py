@@ -19,11 +19,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from seatwin.geo.angles import wrap_to_pi
 from seatwin.perception.measurements import MeasurementKind, Scan
 
 Array = NDArray[np.float64]
-
-_TWO_PI = 2.0 * np.pi
 
 
 def cv_transition(dt: float) -> Array:
@@ -41,11 +40,6 @@ def cv_process_noise(dt: float, q_north: float, q_east: float) -> Array:
     Q[:2, :2] = q_north * blk
     Q[2:, 2:] = q_east * blk
     return Q
-
-
-def wrap_angle(a: Array) -> Array:
-    """Wrap to [−π, π) (innovations of bearings)."""
-    return (a + np.pi) % _TWO_PI - np.pi
 
 
 @dataclass(frozen=True)
@@ -94,7 +88,7 @@ class RangeBearingModel:
 
     def residual(self, z: Array, zhat: Array) -> Array:
         v = z[None, :, :] - zhat[:, None, :]
-        v[..., 1] = wrap_angle(v[..., 1])
+        v[..., 1] = wrap_to_pi(v[..., 1])
         return v
 
     def clutter_density(self, z: Array, density_per_m2: float) -> Array:
@@ -122,7 +116,7 @@ class BearingModel:
         return np.arctan2(de, dn)[:, None], H
 
     def residual(self, z: Array, zhat: Array) -> Array:
-        return wrap_angle(z[None, :, :] - zhat[:, None, :])
+        return wrap_to_pi(z[None, :, :] - zhat[:, None, :])
 
     def clutter_density(self, z: Array, density_per_rad: float) -> Array:
         """Clutter density per radian of bearing (given directly in the tuning)."""

@@ -1,4 +1,4 @@
-"""Static harbour geometry: from a :class:`~seatwin.world.layout.HarbourLayout` or a land/water raster.
+"""Static harbour geometry (3-D): from a :class:`~seatwin.layout.HarbourLayout` or a :class:`~seatwin.layout.LandRaster`.
 
 Water is the plane z = 0 and is *not* a mesh: a ray that reaches it returns nothing (calm
 water reflects the laser away), which the sensors model by cutting rays at the surface.
@@ -6,17 +6,16 @@ water reflects the laser away), which the sensors model by cutting rays at the s
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 import trimesh
-import yaml
 
 from seatwin.errors import InputError
-from seatwin.world.layout import DEFAULT_LAYOUT, HarbourLayout
+from seatwin.geo.frames import yaw_matrix
+from seatwin.layout import DEFAULT_LAYOUT, HarbourLayout, LandRaster, read_land_raster
 from seatwin.world.objects import WorldObject
-from seatwin.world.shapes import block, merge, yaw_matrix
+from seatwin.world.shapes import block, merge
 from seatwin.world.vessels import REFLECTIVITY, generic
 
 QUAY_BASE = -2.0
@@ -42,62 +41,6 @@ def harbour_from_layout(layout: HarbourLayout = DEFAULT_LAYOUT) -> list[WorldObj
         boat.vertices = boat.vertices @ yaw_matrix(np.radians(m.heading_deg)).T + [m.north, m.east, 0.0]
         objs.append(WorldObject(m.name, "moored_boat", boat, REFLECTIVITY["moored_boat"]))
     return objs
-
-
-@dataclass(frozen=True)
-class LandRaster:
-    """A land/water grid: ``water[r, c]`` True on water; cell (r, c) covers
-    north ``origin_north + r·res`` … ``+res`` and east ``origin_east + c·res`` … ``+res``."""
-
-    water: np.ndarray
-    origin_north: float
-    origin_east: float
-    resolution: float = 1.0
-    source: str = "<memory>"
-
-    def is_water(self, north: np.ndarray, east: np.ndarray) -> np.ndarray:
-        """True where (north, east) falls on a water cell (outside the grid counts as water)."""
-        r = np.floor((np.asarray(north) - self.origin_north) / self.resolution).astype(int)
-        c = np.floor((np.asarray(east) - self.origin_east) / self.resolution).astype(int)
-        inside = (r >= 0) & (r < self.water.shape[0]) & (c >= 0) & (c < self.water.shape[1])
-        out = np.ones(np.broadcast(r, c).shape, dtype=bool)
-        out[inside] = self.water[r[inside], c[inside]]
-        return out
-
-
-def read_land_raster(path: str | Path) -> LandRaster:
-    """Read a ``.bin`` + ``.yaml`` land/water raster (uint8 rows from the south, 1 = water, 0 = land).
-
-    ``path`` is either file; the other is found beside it.
-    """
-    p = Path(path)
-    meta_path, bin_path = p.with_suffix(".yaml"), p.with_suffix(".bin")
-    for q in (meta_path, bin_path):
-        if not q.is_file():
-            raise InputError(q, "raster file not found (a land raster is a .bin with a .yaml beside it)")
-    try:
-        meta = yaml.safe_load(meta_path.read_text())
-    except yaml.YAMLError as exc:
-        raise InputError(meta_path, f"not valid YAML: {exc}") from exc
-    need = ("map_width", "map_height", "origin_x_coordinate", "origin_y_coordinate")
-    for key in need:
-        if not isinstance(meta, dict) or key not in meta:
-            raise InputError(meta_path, f"missing key {key!r} (expected {', '.join(need)}, grid_resolution)", where=key)
-    w, h = int(meta["map_width"]), int(meta["map_height"])
-    res = float(meta.get("grid_resolution", 1.0))
-    data = np.fromfile(bin_path, dtype=np.uint8)
-    if data.size != w * h:
-        raise InputError(bin_path, f"holds {data.size} bytes, expected map_width × map_height = {w} × {h} = {w * h}")
-    bad = np.flatnonzero(data > 1)
-    if bad.size:
-        raise InputError(bin_path, f"cell values must be 0 (land) or 1 (water), got {data[bad[0]]}", where=f"byte {bad[0]}")
-    return LandRaster(
-        data.reshape(h, w).astype(bool),
-        origin_north=float(meta["origin_y_coordinate"]),
-        origin_east=float(meta["origin_x_coordinate"]),
-        resolution=res,
-        source=str(bin_path),
-    )
 
 
 def merge_cells(mask: np.ndarray) -> list[tuple[int, int, int, int]]:

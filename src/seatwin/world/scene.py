@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from seatwin.engine import MeshData, RayCaster, make_caster
 from seatwin.errors import InputError
-from seatwin.geo import unwrap, wrap_to_pi
+from seatwin.geo import unwrap, wrap_to_pi, yaw_matrix
 from seatwin.scenario.model import Scenario, Trajectory
 from seatwin.world.harbour import build_harbour
 from seatwin.world.objects import WorldObject
@@ -153,8 +153,7 @@ class Scene:
     def vessel_mesh_at(self, name: str, t: float) -> MeshData:
         """Vessel ``name``'s mesh posed in the world frame at time ``t``."""
         p = self.pose(name, t)
-        c, s = float(np.cos(p.heading)), float(np.sin(p.heading))
-        rot = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        rot = yaw_matrix(float(p.heading))
         mesh = MeshData.from_trimesh(self.vessel_models[name].mesh, self.vessel_ids[name])
         return mesh.transformed(rot, [float(p.north), float(p.east), 0.0])
 

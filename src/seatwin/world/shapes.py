@@ -63,8 +63,3 @@ def merge(parts: Sequence[trimesh.Trimesh]) -> trimesh.Trimesh:
     """One mesh of all ``parts``."""
     return trimesh.util.concatenate(list(parts))
 
-
-def yaw_matrix(heading: float) -> np.ndarray:
-    """Rotation about z (down) by ``heading`` [rad], clockwise seen from above."""
-    c, s = np.cos(heading), np.sin(heading)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])

@@ -31,6 +31,7 @@ import numpy as np
 import trimesh
 
 from seatwin.errors import InputError
+from seatwin.geo.frames import FLU_TO_FRD, yaw_matrix
 from seatwin.world.shapes import block, hull, merge, prism
 
 REFLECTIVITY = {
@@ -153,9 +154,8 @@ def load_mesh(
     mesh = loaded.copy()
     v = np.asarray(mesh.vertices, dtype=float) * float(scale)
     if z_up:
-        v = v * np.array([1.0, -1.0, -1.0])
-    c, s = np.cos(np.radians(yaw_deg)), np.sin(np.radians(yaw_deg))
-    v = v @ np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]).T + np.asarray(offset, dtype=float)
+        v = v * np.diag(FLU_TO_FRD)  # z-up (x forward, y left) → z-down
+    v = v @ yaw_matrix(np.radians(yaw_deg)).T + np.asarray(offset, dtype=float)
     # (y, z) → (−y, −z) is a half turn about x, not a mirror: the winding stays outward.
     return trimesh.Trimesh(v, np.asarray(mesh.faces), process=False)
 

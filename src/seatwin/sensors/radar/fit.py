@@ -26,7 +26,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from seatwin.errors import InputError
+from seatwin.errors import InputError, ParameterError
+from seatwin.geo.angles import wrap_to_pi
 from seatwin.sensors.radar.clutter import annulus_area
 from seatwin.sensors.radar.config import ClutterMap, DetectionConfig, RadarConfig
 from seatwin.sensors.radar.detection import detection_probability
@@ -76,17 +77,13 @@ SNR_DB_BOUNDS = (-30.0, 80.0)
 """Search bounds of the fitted reference SNR [dB]."""
 
 
-def _wrap(a: NDArray[np.float64]) -> NDArray[np.float64]:
-    return (a + np.pi) % (2 * np.pi) - np.pi
-
-
 def polar_residuals(plots: NDArray[np.float64], antenna: NDArray[np.float64], target: NDArray[np.float64]) -> tuple[NDArray, NDArray, float]:
     """Range [m] and bearing [rad] residuals of plots about a target seen from the antenna; the target's range."""
     dp = plots - antenna
     dt = target - antenna
     r_t = float(np.hypot(*dt))
     dr = np.hypot(dp[:, 0], dp[:, 1]) - r_t
-    db = _wrap(np.arctan2(dp[:, 1], dp[:, 0]) - math.atan2(dt[1], dt[0]))
+    db = wrap_to_pi(np.arctan2(dp[:, 1], dp[:, 0]) - math.atan2(dt[1], dt[0]))
     return dr, db, r_t
 
 
@@ -292,7 +289,7 @@ def fit_radar(
     if len(obs) < 4:
         raise InputError(obs.source, f"a radar fit needs at least 4 scans, got {len(obs)}")
     if clutter not in ("uniform", "map"):
-        raise InputError("--clutter", f"expected 'uniform' or 'map', got {clutter!r}")
+        raise ParameterError("clutter", f"expected 'uniform' or 'map', got {clutter!r}")
     if fit_max_range:
         far = max((float(np.hypot(*(p - obs.antenna[k]).T).max()) for k, p in enumerate(obs.plots) if len(p)), default=0.0)
         if far > base.min_range_m:

@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from seatwin.geo.angles import wrap_to_2pi
 from seatwin.rng import frame_rng
 from seatwin.sensors.radar.clutter import clutter_points
 from seatwin.sensors.radar.config import RadarConfig
@@ -64,7 +65,7 @@ class RadarScan:
 
     @property
     def bearing(self) -> NDArray[np.float64]:
-        return (self.antenna.heading + self.azimuth) % (2 * np.pi)
+        return wrap_to_2pi(self.antenna.heading + self.azimuth)
 
     @property
     def positions(self) -> NDArray[np.float64]:
@@ -146,7 +147,7 @@ class RadarModel:
         n = len(blobs)
         nc = cfg.noise
         rng_m = blobs.range_m + nc.range_bias_m + nc.range_sigma_m * noise.standard_normal(n)
-        az = (blobs.azimuth + nc.bearing_bias + nc.bearing_sigma * noise.standard_normal(n)) % (2 * np.pi)
+        az = wrap_to_2pi(blobs.azimuth + nc.bearing_bias + nc.bearing_sigma * noise.standard_normal(n))
         kind = np.array([KIND_LAND if kinds.get(int(o), VESSEL) == LAND else KIND_VESSEL for o in blobs.object_id], np.int64)
         keep = (rng_m >= cfg.min_range_m) & (rng_m <= cfg.max_range_m)
         bearing = antenna.heading + az
@@ -155,7 +156,7 @@ class RadarModel:
         # Clutter.
         cl = clutter_points(self._rng("clutter", frame), cfg.clutter, (antenna.north, antenna.east), cfg.min_range_m, cfg.max_range_m)
         c_rng = np.hypot(cl[:, 0] - antenna.north, cl[:, 1] - antenna.east)
-        c_az = (np.arctan2(cl[:, 1] - antenna.east, cl[:, 0] - antenna.north) - antenna.heading) % (2 * np.pi)
+        c_az = wrap_to_2pi(np.arctan2(cl[:, 1] - antenna.east, cl[:, 0] - antenna.north) - antenna.heading)
         nclut = len(cl)
         spokes = None
         if cfg.spokes.enabled if with_spokes is None else with_spokes:

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from seatwin.geo.angles import circular_mean, wrap_to_2pi, wrap_to_pi
 from seatwin.sensors.radar.config import RadarConfig
 
 KIND_VESSEL = 0
@@ -93,10 +94,6 @@ def components(spoke: ArrayLike, sample: ArrayLike, n_spokes: int, gap_spokes: i
     return labels.astype(np.int64)
 
 
-def _circular_mean(az: NDArray[np.float64], w: NDArray[np.float64]) -> float:
-    return float(np.arctan2((w * np.sin(az)).sum(), (w * np.cos(az)).sum()) % (2 * np.pi))
-
-
 def extract_plots(cells: Cells, cfg: RadarConfig) -> Blobs:
     """Merge touching cells into blobs, split blobs larger than ``max_plot_extent_m``; one plot each.
 
@@ -114,8 +111,8 @@ def extract_plots(cells: Cells, cfg: RadarConfig) -> Blobs:
     for idx in np.split(order, bounds):
         if len(idx) < pc.min_cells:
             continue
-        a0 = _circular_mean(az[idx], w[idx])
-        dev = (az[idx] - a0 + np.pi) % (2 * np.pi) - np.pi
+        a0 = float(wrap_to_2pi(circular_mean(az[idx], w[idx])))
+        dev = wrap_to_pi(az[idx] - a0)
         r = rng_m[idx]
         x = dev * r  # cross-range [m]
         ext_r = float(r.max() - r.min()) + cfg.range_increment_m
@@ -131,9 +128,9 @@ def extract_plots(cells: Cells, cfg: RadarConfig) -> Blobs:
             if len(g) < pc.min_cells:
                 continue
             wg = w[g]
-            ag = _circular_mean(az[g], wg)
+            ag = float(wrap_to_2pi(circular_mean(az[g], wg)))
             rg = rng_m[g]
-            devg = (az[g] - ag + np.pi) % (2 * np.pi) - np.pi
+            devg = wrap_to_pi(az[g] - ag)
             xg = devg * rg
             ext = max(float(rg.max() - rg.min()) + cfg.range_increment_m, float(xg.max() - xg.min()) + cfg.spoke_step * float(rg.mean()))
             ids, counts = np.unique(cells.object_id[g], return_counts=True)

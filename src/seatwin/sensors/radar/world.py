@@ -15,6 +15,7 @@ from numpy.typing import ArrayLike
 
 from seatwin.engine import RayHits
 from seatwin.errors import InputError
+from seatwin.geo import TWO_PI, wrap_to_2pi, yaw_matrix
 from seatwin.sensors.radar.geometry import AntennaPose
 from seatwin.sensors.radar.model import LAND, VESSEL, RadarModel, RadarScan
 
@@ -38,7 +39,7 @@ class SceneCaster:
             return self.time
         n0, e0, heading, period = self.sweep
         p = self.scene.pose(name, self.time)  # type: ignore[attr-defined]
-        frac = ((np.arctan2(float(p.east) - e0, float(p.north) - n0) - heading) % (2 * np.pi)) / (2 * np.pi)
+        frac = wrap_to_2pi(np.arctan2(float(p.east) - e0, float(p.north) - n0) - heading) / TWO_PI
         t = self.time + frac * period
         try:
             self.scene.pose(name, t)  # type: ignore[attr-defined]
@@ -63,8 +64,7 @@ class SceneCaster:
         one_origin = n > 0 and bool((o == o[0]).all())
         for name in self.vessels:
             p = self.scene.pose(name, self.pose_time(name))  # type: ignore[attr-defined]
-            c, s = float(np.cos(p.heading)), float(np.sin(p.heading))
-            rot = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])  # body → world
+            rot = yaw_matrix(float(p.heading))  # body → world
             t = np.array([float(p.north), float(p.east), 0.0])
             # Cull: only rays passing within the vessel's bounding sphere can hit it.
             radius = self._radius(name)

@@ -10,6 +10,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
 
 @dataclass(frozen=True)
 class Box:
@@ -74,11 +77,13 @@ class HarbourLayout:
         )
     )
 
-    def is_water(self, north: float, east: float) -> bool:
-        """True on open water (inside the channel and not under a pier)."""
-        if not (self.north_min <= north <= self.north_max and abs(east) < self.half_width):
-            return False
-        return not any(p.north_min <= north <= p.north_max and p.east_min <= east <= p.east_max for p in self.piers)
+    def is_water(self, north: ArrayLike, east: ArrayLike) -> NDArray[np.bool_] | bool:
+        """True on open water (inside the channel and not under a pier); element-wise for arrays."""
+        n, e = np.broadcast_arrays(np.asarray(north, float), np.asarray(east, float))
+        water = (self.north_min <= n) & (n <= self.north_max) & (np.abs(e) < self.half_width)
+        for p in self.piers:
+            water &= ~((p.north_min <= n) & (n <= p.north_max) & (p.east_min <= e) & (e <= p.east_max))
+        return bool(water) if water.ndim == 0 else water
 
 
 DEFAULT_LAYOUT = HarbourLayout()

@@ -1,0 +1,14 @@
+"""The harbour's 2-D layout, as data: where water, quays, piers and buildings are.
+
+Below both :mod:`seatwin.scenario` (built-in scenarios keep to the water, plots draw the
+outline) and :mod:`seatwin.world` (which builds the 3-D harbour from it), so neither of
+those imports the other for it.
+
+* :mod:`.model` — :class:`HarbourLayout` and :data:`DEFAULT_LAYOUT`, the built-in harbour.
+* :mod:`.raster` — :class:`LandRaster`, a land/water grid read by :func:`read_land_raster`.
+"""
+
+from seatwin.layout.model import DEFAULT_LAYOUT, Box, HarbourLayout, MooredBoat
+from seatwin.layout.raster import LandRaster, read_land_raster
+
+__all__ = ["DEFAULT_LAYOUT", "Box", "HarbourLayout", "LandRaster", "MooredBoat", "read_land_raster"]

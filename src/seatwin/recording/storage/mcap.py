@@ -1,0 +1,141 @@
+"""MCAP (rosbag2 storage ``mcap``): rosbags' MCAP storage writer with fewer copies.
+
+rosbags builds every message record in its own ``BytesIO`` and copies each closed chunk twice
+more before it reaches the file; for 138 kB point clouds those copies and the per-record Python
+overhead are a measurable part of the recording cost. :class:`LeanMcapWriter` writes message
+records straight into the chunk buffer and the chunk buffer straight into the file. Small
+records give the same bytes as rosbags' (``tests/recording/test_storage.py``); a message of
+``DIRECT_BYTES`` or more goes to the file as a chunk of its own.
+
+A flush closes the open chunk and flushes the file (rosbags also closes a chunk at 1 MiB, and
+the file is flushed then too).
+"""
+
+from __future__ import annotations
+
+import os
+import struct
+from collections import defaultdict
+from io import BytesIO
+
+from rosbags.interfaces import Connection
+from rosbags.rosbag2.storage_mcap import McapWriter, PendingChunk
+
+from seatwin.recording.storage.rosbag2 import Rosbag2Storage
+
+CHUNK_BYTES = 1 << 20
+"""Close a chunk once it holds more than this (rosbags' own threshold)."""
+
+_MSG_HEAD = struct.Struct("<BQHIQQ")  # op 0x05, record length, channel, sequence, log time, publish time
+_U16, _U32, _U64 = struct.Struct("<H"), struct.Struct("<I"), struct.Struct("<Q")
+
+
+class LeanMcapWriter(McapWriter):
+    """rosbags' MCAP storage with direct writes.
+
+    Messages below ``DIRECT_BYTES`` give the same bytes as rosbags; a larger message (a point
+    cloud, an image) goes to the file as a chunk of its own, without passing through the chunk
+    buffer (the pending chunk is closed first, so the file order stays the write order).
+    """
+
+    DIRECT_BYTES: int | None = 64 * 1024
+
+    def write(self, connection: Connection, timestamp: int, data: bytes | memoryview) -> None:
+        if self.DIRECT_BYTES is not None and len(data) >= self.DIRECT_BYTES and not self.compression:
+            self._write_own_chunk(connection, timestamp, data)
+            return
+        chunk = self.chunk
+        if timestamp < self.message_start_time:
+            self.message_start_time = timestamp
+        if timestamp > self.message_end_time:
+            self.message_end_time = timestamp
+        self.channel_stats[connection.id] += 1
+        if timestamp < chunk.message_start_time:
+            chunk.message_start_time = timestamp
+        if timestamp > chunk.message_end_time:
+            chunk.message_end_time = timestamp
+        bio = chunk.bio
+        chunk.msgs[connection.id].append((timestamp, bio.tell()))
+        bio.write(_MSG_HEAD.pack(0x05, 22 + len(data), connection.id, 0, timestamp, timestamp))
+        bio.write(data)
+        if bio.tell() > CHUNK_BYTES:
+            self.close_chunk()
+
+    def _write_own_chunk(self, connection: Connection, timestamp: int, data: bytes | memoryview) -> None:
+        chunk = self.chunk
+        out = self.bio
+        if chunk.msgs:
+            self.close_chunk()
+        elif chunk.bio.tell():  # schema/channel records only: they may stand outside chunks
+            out.write(chunk.bio.getbuffer())
+            self.chunk = PendingChunk(2**63 - 1, 0, BytesIO(), defaultdict(list))
+        self.message_start_time = min(self.message_start_time, timestamp)
+        self.message_end_time = max(self.message_end_time, timestamp)
+        self.channel_stats[connection.id] += 1
+        msg_head = _MSG_HEAD.pack(0x05, 22 + len(data), connection.id, 0, timestamp, timestamp)
+        size = len(msg_head) + len(data)
+        t = _U64.pack(timestamp)
+        head = t + t + _U64.pack(size) + _U32.pack(0) + _U32.pack(0) + _U64.pack(size)
+        chunk_start = out.tell()
+        out.write(b"\x06" + _U64.pack(len(head) + size) + head + msg_head)
+        out.write(data)
+        chunk_end = out.tell()
+        index_start = chunk_end
+        out.write(b"\x07" + _U64.pack(22) + _U16.pack(connection.id) + _U32.pack(16) + t + _U64.pack(0))
+        rec = BytesIO()
+        rec.write(t + t + _U64.pack(chunk_start) + _U64.pack(chunk_end - chunk_start))
+        rec.write(_U32.pack(10) + _U16.pack(connection.id) + _U64.pack(index_start))
+        rec.write(_U64.pack(out.tell() - chunk_end) + _U32.pack(0) + _U64.pack(size) + _U64.pack(size))
+        self.chunks.append(rec)
+
+    def close_chunk(self) -> None:
+        chunk = self.chunk
+        size = chunk.bio.tell()
+        buf = chunk.bio.getbuffer()
+        payload = self.compressor(bytes(buf)) if self.compression else buf
+        n_payload = len(payload)
+        comp = self.compression.encode()
+        head = (_U64.pack(chunk.message_start_time) + _U64.pack(chunk.message_end_time) + _U64.pack(size)
+                + _U32.pack(0) + _U32.pack(len(comp)) + comp + _U64.pack(n_payload))
+        out = self.bio
+        chunk_start = out.tell()
+        out.write(b"\x06" + _U64.pack(len(head) + n_payload) + head)
+        out.write(payload)
+        chunk_end = out.tell()
+        del payload
+        buf.release()
+
+        offsets: list[tuple[int, int]] = []
+        for cid, msgs in chunk.msgs.items():
+            offsets.append((cid, out.tell()))
+            body = _U16.pack(cid) + _U32.pack(len(msgs) * 16) + b"".join(_U64.pack(t) + _U64.pack(o) for t, o in msgs)
+            out.write(b"\x07" + _U64.pack(len(body)) + body)
+
+        rec = BytesIO()
+        rec.write(_U64.pack(chunk.message_start_time) + _U64.pack(chunk.message_end_time))
+        rec.write(_U64.pack(chunk_start) + _U64.pack(chunk_end - chunk_start))
+        rec.write(_U32.pack(len(offsets) * 10) + b"".join(_U16.pack(c) + _U64.pack(o) for c, o in offsets))
+        rec.write(_U64.pack(out.tell() - chunk_end) + _U32.pack(len(comp)) + comp)
+        rec.write(_U64.pack(n_payload) + _U64.pack(size))
+        self.chunks.append(rec)
+        self.chunk = PendingChunk(2**63 - 1, 0, BytesIO(), defaultdict(list))
+
+
+class McapStorage(Rosbag2Storage):
+    """A rosbag2 directory with one ``.mcap`` file (:class:`LeanMcapWriter`)."""
+
+    format = "mcap"
+    plugin = LeanMcapWriter
+
+    def write(self, connection: Connection, timestamp: int, data: bytes | memoryview) -> None:
+        super().write(connection, timestamp, data)
+        if not self.storage.chunk.msgs:  # a chunk was just closed (full, or a large message's own)
+            self.storage.bio.flush()
+
+    def flush(self) -> None:
+        st = self.storage
+        if st.chunk.msgs:
+            st.close_chunk()
+        st.bio.flush()
+        if self.fsync:
+            os.fsync(st.bio.fileno())
