@@ -21,28 +21,31 @@ from __future__ import annotations
 import argparse
 import json
 import time
+from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import NDArray
+
+if TYPE_CHECKING:
+    from seatwin.evaluation import Tracks, TruthSet
+
+Array = NDArray[np.float64]
 
 JOYRIDE = Path(__file__).resolve().parents[2] / "shared" / "data" / "joyride" / "joyride.mat"
 
 
-def joyride_runs(seed: int):
-    import scipy.io as sio
-
-    from seatwin.evaluation.runs import track_scans
+def joyride_runs(seed: int) -> tuple[TruthSet, Tracks, Tracks, float]:
     from seatwin.evaluation.truth import TruthSet, TruthTrack
+    from seatwin.perception.datasets import read_joyride
     from seatwin.perception.measurements import MeasurementKind, Scan
+    from seatwin.pipeline import track_scans
     from seatwin.rng import frame_rng
     from seatwin.tracking import load_tuning
 
-    m = sio.loadmat(JOYRIDE)
-    t = m["time"].ravel().astype(float)
-    target = m["target"].astype(float)
-    own = m["telemetron"].astype(float)
-    plots = [np.asarray(z, float).reshape(-1, 2) for z in m["measurements"].ravel()]
-    plots = [z[np.isfinite(z).all(axis=1)] for z in plots]
+    ds = read_joyride(JOYRIDE)
+    t, target, own, plots = ds.time, ds.targets["target"], ds.sensor, ds.plots
     real = [Scan(float(tk), "radar", MeasurementKind.CARTESIAN, z, float(o[0]), float(o[2])) for tk, z, o in zip(t, plots, own)]
     allz = np.concatenate(plots)
     lo, hi = allz.min(axis=0), allz.max(axis=0)
@@ -57,8 +60,8 @@ def joyride_runs(seed: int):
         synt.append(Scan(float(tk), "radar", MeasurementKind.CARTESIAN, z, float(o[0]), float(o[2])))
     truth = TruthSet({"target": TruthTrack("target", t, target[:, 0], target[:, 2], source=str(JOYRIDE))})
     t0 = time.perf_counter()
-    run_real = track_scans(real, "joyride", "joyride real")
-    run_synt = track_scans(synt, "joyride", "joyride synthetic")
+    run_real = track_scans(real, "joyride", source="joyride real")
+    run_synt = track_scans(synt, "joyride", source="joyride synthetic")
     return truth, run_real, run_synt, time.perf_counter() - t0
 
 
@@ -74,7 +77,8 @@ def real_comparison(seed: int, gate: float) -> dict:
                                                               "anees_verdict")}
     table = {}
     for both in ("never", "zero", "skip"):
-        c = compare(run_real, run_synt, truth, "joyride", CompareOptions(gate=gate, both_missing=both, time_tolerance=0.05)).targets[0]
+        opts = CompareOptions(gate=gate, both_missing=both, time_tolerance=0.05)
+        c = compare(run_real, run_synt, truth, "joyride", opts).targets[0]
         table[both] = {k: getattr(c, k) for k in ("ahed_standard", "ahed_printed", "n_common", "n_only_real",
                                                   "n_only_synthetic", "n_both_missing", "fraction_only_one",
                                                   "mean_covdiff")}
@@ -85,7 +89,7 @@ def real_comparison(seed: int, gate: float) -> dict:
     return out
 
 
-def naive_hed(m1, p1, m2, p2):
+def naive_hed(m1: Array, p1: Array, m2: Array, p2: Array) -> Array:
     pbar = 0.5 * (p1 + p2)
     d = m1 - m2
     q = np.einsum("ni,nij,nj->n", d, np.linalg.inv(pbar), d)
@@ -103,7 +107,7 @@ def timing(n: int = 100_000, repeats: int = 3) -> dict:
     p2 = b @ b.transpose(0, 2, 1) + 0.1 * np.eye(4)
     m1, m2 = rng.normal(size=(n, 4)), rng.normal(size=(n, 4))
 
-    def best(f):
+    def best(f: Callable[[], object]) -> float:
         ts = []
         for _ in range(repeats):
             t0 = time.perf_counter()
@@ -114,6 +118,7 @@ def timing(n: int = 100_000, repeats: int = 3) -> dict:
     ours = best(lambda: hellinger(m1, p1, m2, p2))
     naive = best(lambda: naive_hed(m1, p1, m2, p2))
     agree = float(np.max(np.abs(hellinger(m1, p1, m2, p2) - naive_hed(m1, p1, m2, p2))))
+    unscaled = hellinger(m1[:1000], p1[:1000], m2[:1000], p2[:1000])
     with np.errstate(all="ignore"):
         bad = {}
         for scale in (1e-200, 1e200):
@@ -122,7 +127,7 @@ def timing(n: int = 100_000, repeats: int = 3) -> dict:
             h_ours = hellinger(m1[:1000] * s, p1[:1000] * scale, m2[:1000] * s, p2[:1000] * scale)
             bad[f"{scale:g}"] = {"naive_nonfinite": int(np.count_nonzero(~np.isfinite(h_naive))),
                                  "ours_nonfinite": int(np.count_nonzero(~np.isfinite(h_ours))),
-                                 "ours_max_err_vs_unscaled": float(np.max(np.abs(h_ours - hellinger(m1[:1000], p1[:1000], m2[:1000], p2[:1000]))))}
+                                 "ours_max_err_vs_unscaled": float(np.max(np.abs(h_ours - unscaled)))}
     return {"pairs": n, "ours_s": round(ours, 4), "naive_s": round(naive, 4), "ratio_to_naive": round(ours / naive, 2),
             "pairs_per_s": round(n / ours), "max_abs_diff_vs_naive": agree, "extreme_scales": bad}
 

@@ -1,9 +1,10 @@
-"""Radar model speed: one rotation in the default harbour (ferry_crossing), and the joyride replica.
+"""Radar model speed: one rotation in the default harbour (ferry_crossing).
 
 Baseline measured in the same process: the same fan cast through a caster rebuilt from the scene's
 posed world-frame meshes every scan (what a naive implementation does) instead of the SceneCaster
 (static caster built once, vessels cast in their body frames with bounding-sphere culling).
-Prints JSON on the last line.
+``full_scan_s``: a whole scan (cast, echoes, plots) as the simulation loop runs it
+(:class:`seatwin.sim.radar.RadarSensor` in :func:`seatwin.sim.loop.frames`). Prints JSON on the last line.
 """
 
 from __future__ import annotations
@@ -19,7 +20,9 @@ def main() -> None:
     from seatwin.scenario.builtin import builtin_scenario
     from seatwin.sensors.radar import RadarConfig, RadarModel
     from seatwin.sensors.radar.geometry import fan_directions
-    from seatwin.sensors.radar.world import SceneCaster, antenna_pose, scan_scene
+    from seatwin.sensors.radar.world import SceneCaster, antenna_pose
+    from seatwin.sim.loop import frames
+    from seatwin.sim.radar import RadarSensor
     from seatwin.world.scene import Scene
 
     sc = builtin_scenario("ferry_crossing")
@@ -44,10 +47,9 @@ def main() -> None:
         SceneCaster(scene, float(t), (own,)).cast(o, d, cfg.max_range_m)
     scene_cast = (time.perf_counter() - t0) / len(times)
 
+    sensor = RadarSensor(model, scene, own, times=times)  # full scans through the simulation loop
     t0 = time.perf_counter()
-    plots = 0
-    for k, t in enumerate(times):
-        plots += len(scan_scene(model, scene, own, k, float(t)))
+    plots = sum(len(scan) for *_, scan in frames([sensor], float(times[0]), float(times[-1]) + 1.0))
     full = (time.perf_counter() - t0) / len(times)
     print(json.dumps({
         "rays_per_scan": int(len(d)),

@@ -2,8 +2,9 @@
 
     .venv/bin/python benchmarks/tracking_joyride.py [../shared/data/joyride/joyride.mat]
 
-1. ``seatwin import joyride`` → a recording; ``seatwin track --sensors radar`` with the
-   ``joyride`` preset (not fitted to this file's ground truth) → TRACKS.csv.
+1. :func:`seatwin.perception.datasets.import_joyride` → a recording;
+   :func:`seatwin.pipeline.track_recording` with the radar and the ``joyride`` preset (not
+   fitted to this file's ground truth) → tracks.
 2. Metrics with :func:`seatwin.evaluation.evaluate` at association radii 10 m and 50 m:
    coverage, position/velocity RMSE, ANEES with χ² bounds, tracks, switches, false tracks.
 3. Calibration: the radar's bearing bias is estimated on the first half of the scans only
@@ -19,9 +20,13 @@ import json
 import sys
 import tempfile
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import yaml
+
+if TYPE_CHECKING:
+    from seatwin.evaluation import Tracks, TruthSet
 
 ROOT = Path(__file__).resolve().parents[1]
 DEFAULT_MAT = ROOT.parent / "shared" / "data" / "joyride" / "joyride.mat"
@@ -48,7 +53,7 @@ def calibrate_bearing_bias(mat: Path, fraction: float = 0.5, max_distance: float
     return float(np.median(errs)), len(errs)
 
 
-def metrics(tracks, truth, gate: float, t_from: float | None = None) -> dict:
+def metrics(tracks: Tracks, truth: TruthSet, gate: float, t_from: float | None = None) -> dict:
     """Figures of one run at one association radius (optionally only instants ≥ ``t_from``)."""
     from seatwin.evaluation import evaluate
 
@@ -76,34 +81,24 @@ def metrics(tracks, truth, gate: float, t_from: float | None = None) -> dict:
     }
 
 
-def run_tracker(run_dir: Path, out: Path, tuning: str) -> None:
-    from seatwin.cli.main import run
-
-    code = run(["track", str(run_dir), "--sensors", "radar", "--tuning", tuning, "--out", str(out), "--no-progress"])
-    if code:
-        raise SystemExit(f"seatwin track failed with {code}")
-
-
 def main(mat: Path) -> dict:
-    from seatwin.cli.main import run
-    from seatwin.evaluation import load_truth, read_tracks
+    from seatwin.evaluation import load_truth
+    from seatwin.perception.datasets import import_joyride
+    from seatwin.pipeline import track_recording
 
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         rd = tmp / "joyride_run"
-        if run(["import", "joyride", str(mat), "--out", str(rd)]):
-            raise SystemExit("import failed")
+        import_joyride(mat, rd)
         truth = load_truth(str(rd))
-        run_tracker(rd, tmp / "tracks.csv", "joyride")
-        base = read_tracks(tmp / "tracks.csv")
+        base = track_recording(rd, sensors=("radar",), tuning="joyride").tracks
         t = base.scan_times
         t_half = float(t[len(t) // 2])
         bias, n_cal = calibrate_bearing_bias(mat)
         tuning = tmp / "joyride_calibrated.yaml"
         tuning.write_text(yaml.safe_dump({"base": "joyride", "name": "joyride+bias",
                                           "sensors": {"radar": {"bearing_bias": bias}}}))
-        run_tracker(rd, tmp / "tracks_cal.csv", str(tuning))
-        cal = read_tracks(tmp / "tracks_cal.csv")
+        cal = track_recording(rd, sensors=("radar",), tuning=str(tuning)).tracks
         result = {
             "uncalibrated_full": [metrics(base, truth, g) for g in (10.0, 50.0)],
             "uncalibrated_second_half": [metrics(base, truth, g, t_half) for g in (10.0, 50.0)],

@@ -32,17 +32,14 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def summarise(csv: Path, mask_path: Path, tmp: Path) -> dict:
-    from seatwin.cli.main import run
-    from seatwin.evaluation import read_tracks
-    from seatwin.perception.datasets import RAVNKLOA_RADAR_POSITION, read_ravnkloa_radar
+    from seatwin.perception.datasets import RAVNKLOA_RADAR_POSITION, import_ravnkloa_radar, read_ravnkloa_radar
     from seatwin.perception.map_mask import RasterMask
     from seatwin.perception.radar import RadarPlots, radar_scan
+    from seatwin.pipeline import track_recording
 
-    rd, out = tmp / csv.stem, tmp / f"{csv.stem}.tracks.csv"
-    if run(["import", "ravnkloa-radar", str(csv), "--out", str(rd), "--map", str(mask_path)]):
-        raise SystemExit(f"import of {csv} failed")
-    if run(["track", str(rd), "--out", str(out), "--no-progress"]):
-        raise SystemExit(f"tracking {csv} failed")
+    rd = tmp / csv.stem
+    import_ravnkloa_radar(csv, rd, "mcap", map_path=str(mask_path))
+    tr = track_recording(rd).tracks
     mask = RasterMask.load(mask_path)
     ds = read_ravnkloa_radar(csv)
     sn, se = RAVNKLOA_RADAR_POSITION
@@ -55,7 +52,6 @@ def summarise(csv: Path, mask_path: Path, tmp: Path) -> dict:
             recurring.append(int((d.min(axis=1) <= 5.0).sum()))
         else:
             recurring.append(0)
-    tr = read_tracks(out)
     conf = tr.confirmed
     ids = np.unique(tr.track_id[conf])
     speeds, on_land = [], 0

@@ -40,7 +40,8 @@ def test_scenario_excludes_ownship() -> None:
 
 
 def test_recording_truth(tmp_path: Path) -> None:
-    from seatwin.recording import open_recording, poses_from_scenario
+    from seatwin.recording import open_recording
+    from seatwin.sim.poses import poses_from_scenario
 
     scen = _scenario()
     with open_recording(tmp_path / "run") as rec:

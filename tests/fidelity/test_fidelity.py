@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from seatwin.cli.main import run
+from seatwin.errors import ParameterError
 from seatwin.fidelity.joyride import heading_from_velocity, load_joyride
 from seatwin.fidelity.method import block_bootstrap_ci
 
@@ -99,3 +100,49 @@ def test_fidelity_reruns_are_identical(toy_mat, tmp_path):
     assert run([*args, "--out", str(tmp_path / "a")]) == 0
     assert run([*args, "--out", str(tmp_path / "b")]) == 0
     assert (tmp_path / "a" / "fidelity.json").read_text() == (tmp_path / "b" / "fidelity.json").read_text()
+
+
+def test_replica_subset_draws_as_in_the_whole_recording():
+    """The replica runs through the simulation loop; a subset of scans keeps the scan index as frame index."""
+    from seatwin.fidelity.joyride import replica_scene, simulate_replica
+    from seatwin.fidelity.synthetic import TOY_RADAR, toy_dataset
+    from seatwin.sensors.radar import RadarConfig, RadarModel
+
+    data = toy_dataset(n=12)
+    model = RadarModel(RadarConfig(**TOY_RADAR), seed=3)
+    scene = replica_scene(data)
+    whole = simulate_replica(data, model, scene)
+    part = simulate_replica(data, model, scene, indices=[2, 5, 11])
+    assert [s.time for s in part] == [float(data.time[k]) for k in (2, 5, 11)]
+    for k, s in zip((2, 5, 11), part):
+        np.testing.assert_array_equal(s.positions, whole[k].positions)
+    with pytest.raises(ParameterError) as exc:
+        simulate_replica(data, model, scene, indices=[5, 2])
+    assert exc.value.param == "indices"
+
+
+@pytest.mark.parametrize(("changes", "param"), [
+    ({"fit_on": "sideways"}, "fit_on"), ({"calibrate_bias": True}, "calibrate_bias"), ({"seeds": 0}, "seeds"),
+    ({"agents": ()}, "agents"), ({"agents": ("jipda", "kalman")}, "agents"), ({"agents": ("gnn", "gnn")}, "agents"),
+    ({"clutter": "rain"}, "clutter"), ({"n_boot": 0}, "n_boot"),
+])
+def test_fidelity_options_name_the_bad_parameter(changes, param):
+    from seatwin.fidelity import FidelityOptions
+
+    with pytest.raises(ParameterError) as exc:
+        FidelityOptions().with_(**changes)
+    assert exc.value.param == param and "--" not in str(exc.value)
+    assert FidelityOptions().with_(fit_on="all", calibrate_bias=True).calibrate_bias
+
+
+def test_typed_result_writes_the_json(toy_mat, tmp_path):
+    from seatwin.fidelity import FidelityResult, run_fidelity, write_fidelity
+
+    result = run_fidelity(str(toy_mat), seeds=2, agents=("gnn",), n_boot=20, fit_boot=0, fit_on="all")
+    assert isinstance(result, FidelityResult) and result.primary_model == "fitted" and result.primary_agent == "gnn"
+    prim = result.primary
+    assert [s.seed for s in prim.per_seed] == [0, 1] and prim.floor_pairs <= 1
+    write_fidelity(tmp_path, result, html=False)
+    j = json.loads((tmp_path / "fidelity.json").read_text())
+    assert j["ahed"] == prim.ahed and j["models"]["fitted"]["agents"]["gnn"]["per_seed"][1]["seed"] == 1
+    assert list(j)[:5] == ["ahed", "ahed_ci", "n_common", "n_only_real", "n_only_synthetic"] and list(j)[-1] == "dataset"

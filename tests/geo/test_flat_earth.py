@@ -13,6 +13,7 @@ from seatwin.geo import (
     WGS84_A,
     WGS84_E2,
     GeodeticOrigin,
+    flat_earth,
     llh_to_ned_exact,
     llh_to_ned_flat,
     meridian_radius,
@@ -21,7 +22,6 @@ from seatwin.geo import (
     ned_to_llh_flat,
     prime_vertical_radius,
 )
-from seatwin.geo import flat_earth
 
 ORIGIN = GeodeticOrigin(63.43, 10.39, 0.0)
 BEARINGS = np.radians(np.arange(0.0, 360.0, 45.0))

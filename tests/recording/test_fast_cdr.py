@@ -1,16 +1,17 @@
-"""The direct ground-truth serialiser is byte-identical to rosbags' generic one (CDR and ROS 1)."""
+"""The direct serialisers (ground truth, PointCloud2) are byte-identical to rosbags' generic ones (CDR and ROS 1)."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from seatwin.recording import RecordingWriter, VesselPose, open_bag
 from seatwin.recording import messages as M
 from seatwin.recording.fast_cdr import GroundTruthEncoder
-from seatwin.recording.writer import poses_from_scenario
 from seatwin.scenario.builtin import builtin_scenario
+from seatwin.sim.poses import poses_from_scenario
 
 from recording_helpers import ORIGIN  # noqa: E402  (conftest puts the folder on sys.path)
 
@@ -82,3 +83,57 @@ def test_simulated_ground_truth_reads_back_identically(tmp_path: Path, fmt: str)
         vt = truth[v.name]
         assert len(vt.time) == len(steps)
         assert (vt.north[-1], vt.east[-1], vt.heading[-1]) == pytest.approx((v.north, v.east, v.heading), abs=1e-12)
+
+
+@pytest.mark.parametrize("fmt", ["mcap", "ros1"])
+@pytest.mark.parametrize("row_step_zero", [False, True])
+def test_point_cloud2_byte_exact(fmt: str, row_step_zero: bool) -> None:
+    """The direct PointCloud2 (points packed into the message) = rosbags' serialiser on messages.point_cloud2."""
+    from seatwin.recording import RADAR_LAYOUT, VLP16_LAYOUT, pack
+    from seatwin.recording.fast_cdr import POINT_CLOUD2, PointCloudEncoder
+    from seatwin.rng import frame_rng
+
+    store, ser = _serializer(fmt)
+    enc = PointCloudEncoder(fmt, row_step_zero=row_step_zero)
+    rng = frame_rng(0, "test/cloud", 0)
+    for i, frame in enumerate(["", "l", "li", "lid", "lidar", "velodyne_top", "bøye/radar"]):
+        for layout in (VLP16_LAYOUT, RADAR_LAYOUT):
+            for n in (0, 1, 3, 1000):
+                cols = {f.name: rng.normal(size=n) for f in layout.fields}
+                if "ring" in cols:
+                    cols["ring"] = rng.integers(0, 16, n)
+                t = TIMES[(i + n) % len(TIMES)]
+                data = pack(layout, **cols)
+                for dense in (True, False):
+                    want = bytes(ser(M.point_cloud2(store, t, frame, layout, data, is_dense=dense,
+                                                    row_step_zero=row_step_zero), POINT_CLOUD2))
+                    assert bytes(enc.encode(t, frame, layout, cols, is_dense=dense)) == want
+                    assert bytes(enc.encode_packed(t, frame, layout, data, is_dense=dense)) == want
+
+
+def test_point_cloud2_checks_columns_as_pack_does() -> None:
+    from seatwin.errors import InputError
+    from seatwin.recording import VLP16_LAYOUT
+    from seatwin.recording.fast_cdr import PointCloudEncoder
+
+    enc = PointCloudEncoder("mcap")
+    with pytest.raises(InputError, match="needs values in"):
+        enc.encode(1.0, "lidar", VLP16_LAYOUT, {"x": [0.0, 1.0], "ring": [0, 70_000]})
+    with pytest.raises(InputError, match="columns differ in length"):
+        enc.encode(1.0, "lidar", VLP16_LAYOUT, {"x": [0.0, 1.0], "y": [0.0]})
+    with pytest.raises(InputError, match="whole number"):
+        enc.encode_packed(1.0, "lidar", VLP16_LAYOUT, np.zeros(25, np.uint8))
+
+
+@pytest.mark.parametrize("fmt", ["mcap", "ros1"])
+def test_nav_sat_fix_takes_a_converted_position(fmt: str) -> None:
+    """A pose carrying its WGS-84 position (converted for a whole run at once) is written as given."""
+    from dataclasses import replace
+
+    enc = GroundTruthEncoder(fmt)
+    v = VesselPose("own", 120.0, -40.0, 0.3, down=-1.0, ownship=True)
+    llh = M.vessel_llh(v, ORIGIN)
+    assert enc.nav_sat_fix(5.0, "own/base_link", replace(v, llh=llh), None) == enc.nav_sat_fix(5.0, "own/base_link", v, ORIGIN)
+    store, ser = _serializer(fmt)
+    moved = replace(v, llh=(63.0, 10.0, 5.0))
+    assert enc.nav_sat_fix(5.0, "b", moved, ORIGIN) == bytes(ser(M.nav_sat_fix(store, 5.0, "b", moved, ORIGIN), "sensor_msgs/msg/NavSatFix"))

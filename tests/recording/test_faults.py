@@ -83,10 +83,7 @@ class _FullDisk:
 @pytest.mark.parametrize("fmt", ["mcap", "ros1"])
 def test_out_of_disk(tmp_path: Path, fmt: str) -> None:
     w = RecordingWriter(tmp_path / "run", fmt, flush_interval_s=0.2)
-    if fmt == "mcap":
-        w._w.storage.bio = _FullDisk(w._w.storage.bio, 150_000)
-    else:
-        w._w.bio = _FullDisk(w._w.bio, 150_000)
+    w.storage.writer.bio = _FullDisk(w.storage.writer.bio, 150_000)  # the MCAP file / the ROS 1 bag
     written = 0
     with pytest.raises(RecordingError, match="No space left"):
         for k in range(100):

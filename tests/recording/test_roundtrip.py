@@ -152,45 +152,19 @@ def test_exception_inside_run_marks_incomplete(tmp_path: Path) -> None:
         assert len(list(rec.point_clouds())) == 1
 
 
-def test_ground_truth_from_scenario_beside_bag(tmp_path: Path) -> None:
-    """A foreign bag without truth topics: truth comes from the Gemini CSV beside it."""
+def test_scenario_file_beside_bag_is_only_located(tmp_path: Path) -> None:
+    """A foreign bag without truth topics: no truth from the bag; the scenario file beside it is named
+    (reading it is :func:`seatwin.evaluation.truth.recording_truth`'s job, tests/evaluation)."""
     from rosbags.rosbag2 import StoragePlugin, Writer
-
-    from seatwin.scenario import Trajectory
-    from seatwin.scenario.gemini_csv import write_gemini_csv
 
     bag = tmp_path / "real"
     with Writer(bag, version=9, storage_plugin=StoragePlugin.MCAP) as w:
         w.add_connection("/x", "std_msgs/msg/String", typestore=typestore("mcap"))
-    t = T0 + np.arange(5) * 0.1
-    write_gemini_csv(tmp_path / "scenario.csv", [Trajectory(t, t - T0, 2 * (t - T0), np.full(5, 0.3)),
-                                                 Trajectory(t, -(t - T0), np.zeros(5), np.zeros(5))])
+    (tmp_path / "scenario.csv").write_text("TimeInSecondsPosix\n")
     with open_bag(bag) as rec:
         assert rec.complete is None
-        truth = rec.ground_truth()
-    assert set(truth) == {"V1", "V2"} and truth["V2"].ownship
-    np.testing.assert_allclose(truth["V1"].v_east, 2.0, atol=1e-5)
-
-
-def test_poses_from_scenario_feed_the_writer(tmp_path: Path) -> None:
-    from seatwin.recording import poses_from_scenario
-    from seatwin.scenario import Role, Scenario, Trajectory, Vessel
-
-    t = T0 + np.arange(11) * 0.1
-    sc = Scenario("s", [
-        Vessel("own", Role.OWNSHIP, Trajectory(t, np.zeros(11), np.arange(11) * 0.2, np.full(11, math.pi / 2))),
-        Vessel("tgt", Role.TARGET, Trajectory(t, 50 + np.arange(11) * 0.5, np.zeros(11), np.zeros(11))),
-    ], origin=ORIGIN)
-    poses = poses_from_scenario(sc, T0 + 0.5)
-    assert [p.name for p in poses] == ["own", "tgt"] and poses[0].ownship and not poses[1].ownship
-    assert poses[0].v_east == pytest.approx(2.0) and poses[1].north == pytest.approx(52.5)
-    with RecordingWriter(tmp_path / "run", origin=sc.origin) as w:
-        for k in range(11):
-            w.write_ground_truth(t[k], poses_from_scenario(sc, t[k]))
-    with open_bag(tmp_path / "run") as rec:
-        truth = rec.ground_truth()
-        odom = next(iter(rec.messages("/ground_truth/own/odom"))).msg
-    assert odom.twist.twist.linear.x == pytest.approx(2.0)  # heading east, moving east: all surge
-    assert odom.twist.twist.linear.y == pytest.approx(0.0, abs=1e-12)
-    np.testing.assert_allclose(truth["own"].v_east, 2.0, rtol=1e-5)
-    np.testing.assert_allclose(truth["tgt"].v_north, 5.0, rtol=1e-5)
+        assert rec.ground_truth() == {}
+        assert rec.scenario_file() == tmp_path / "scenario.csv"
+    (tmp_path / "other.csv").write_text("")
+    with open_bag(bag) as rec:
+        assert rec.scenario_file() == tmp_path / "scenario.csv"  # scenario.* first

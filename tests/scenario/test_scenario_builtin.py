@@ -85,6 +85,7 @@ def test_deterministic():
         assert np.array_equal(va.trajectory.heading, vb.trajectory.heading)
 
 
+@pytest.mark.slow
 def test_every_hull_stays_on_water_clear_of_moored_boats(scenarios):
     for name, sc in scenarios.items():
         _, states = _states(sc)

@@ -49,3 +49,20 @@ def test_verification_figure(results: dict[str, ModeResult], tmp_path) -> None: 
     rings = ground_rings(columns=360)
     path = fig_verification(tmp_path / "verification.png", results, rings)
     assert path.stat().st_size > 10_000
+
+
+def test_errors_verify_prints_the_report(results: dict[str, ModeResult], tmp_path, capsys, monkeypatch) -> None:  # noqa: ANN001
+    import json
+
+    from seatwin.cli.main import run
+    from seatwin.sensors.depthbuffer import verify
+
+    monkeypatch.setattr(verify, "run_verification", lambda columns=1800: results)  # the module's results, not a second run
+    rings = verify.ground_rings
+    monkeypatch.setattr(verify, "ground_rings", lambda: rings(columns=360))
+    assert run(["errors", "--verify", "--plots", str(tmp_path / "figs")]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert set(out) == {"filter", "legacy"}
+    assert out["filter"]["p99"] == results["filter"].summary()["p99"]
+    assert len(out["legacy"]["binned"]["median"]) == 10
+    assert (tmp_path / "figs" / "verification.png").stat().st_size > 10_000

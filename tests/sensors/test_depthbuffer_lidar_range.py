@@ -101,3 +101,17 @@ def test_lidar_sweep_keeps_the_depth_buffers_points(scene: Scene) -> None:
     np.testing.assert_allclose(sweep.xyz, res.sensor_points[ok], atol=1e-4)
     along_beam = res.range[ok, None] * lid.d_sensor[ok]
     assert np.abs(along_beam - res.sensor_points[ok]).max() > 1e-3
+
+
+def test_lidar_columns_on_camera_boundaries_take_the_integer_grid() -> None:
+    from seatwin.sensors.depthbuffer.lidar_range import lidar_grid, sampler_for
+    from seatwin.sensors.lidar_config import VLP16_THESIS
+
+    # 1024 columns and 8 cameras: every 64th column lies exactly on a boundary between two cameras.
+    dirs = VLP16_THESIS.sensor_directions()
+    db = sampler_for(DepthBufferConfig(), dirs, VLP16_THESIS.rings)
+    assert db.grid is not None
+    assert np.array_equal(db.pixels.camera, db.grid.cameras(8))
+    assert np.bincount(db.pixels.camera).tolist() == [128 * VLP16_THESIS.rings] * 8
+    assert lidar_grid(np.ascontiguousarray(dirs[::-1]), VLP16_THESIS.rings) is None  # not the lidar's column layout
+    assert lidar_grid(dirs, 5) is None

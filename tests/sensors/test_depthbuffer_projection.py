@@ -7,14 +7,18 @@ import math
 import numpy as np
 import pytest
 
+from seatwin.sensors.depthbuffer import filter as filter_module
 from seatwin.sensors.depthbuffer.filter import (
+    AzimuthGrid,
     grid_angles,
+    grid_columns,
     grid_directions,
     grid_radius,
     legacy_grid,
     point_cloud_depth,
     project_reference,
     reference_point,
+    sensor_angles,
     spherical_filter,
     split_cameras,
 )
@@ -155,13 +159,70 @@ def test_split_cameras_sector_bounds() -> None:
 
 def test_filter_mask_fig_4_6_one_pixel_per_beam() -> None:
     cam = DepthCamera(169, 64, camera_vfov(D(30), D(90)), 0.05, 100.0)
-    m = spherical_filter(grid_directions(256, 16, 4, D(30)), cam, 4)
+    # The first column of each camera lies exactly on a sector boundary: its camera comes
+    # from the integer column index (grid_columns), the same on every CPU.
+    m = spherical_filter(grid_directions(256, 16, 4, D(30)), cam, 4, grid_columns(256, 16, 4))
     assert len(m) == 256 * 16
     assert np.bincount(m.camera).tolist() == [1024] * 4
     assert m.mask(0).sum() == 1024  # every beam has its own pixel: N_sw·N_sh ≤ N_cw·N_ch, no collisions
     # rows bend away from the centre towards the sector edges (tan φ / cos θ), the bow-tie of Fig. 4.6
     top_row = m.y_d[(m.camera == 0)].reshape(16, 64)[-1]
     assert top_row[0] > top_row[32] and top_row[-1] > top_row[32]
+
+
+def test_azimuth_grid_cameras_hand_values() -> None:
+    # 8 columns at 0°, 45°, …, 315° and 4 cameras of 90° centred on 0°, 90°, …: a beam on a
+    # boundary (45°, 135°, 225°, 315° = −45°) opens the next sector, [−45°, 45°) is camera 0.
+    assert AzimuthGrid(np.arange(8), 8).cameras(4).tolist() == [0, 1, 1, 2, 2, 3, 3, 0]
+    assert AzimuthGrid(np.array([-1, -7, 8, 15]), 8).cameras(4).tolist() == [0, 1, 0, 0]  # indices wrap
+    assert AzimuthGrid.lidar(4, 2).index.tolist() == [0, 0, -1, -1, -2, -2, -3, -3]  # clockwise columns
+    g = grid_columns(256, 16, 4)
+    assert g.matches(sensor_angles(grid_directions(256, 16, 4, D(30)))[0])
+    assert np.bincount(g.cameras(4)).tolist() == [1024] * 4
+    assert not g.matches(sensor_angles(grid_directions(256, 16, 4, D(30)))[0] + 1e-4)
+
+
+def _boundary_azimuths(grid: AzimuthGrid, ulps: int) -> np.ndarray:
+    """The exact grid azimuths, each moved ``ulps`` floating-point steps (as trigonometry might)."""
+    a = grid.azimuth()
+    for _ in range(abs(ulps)):
+        a = np.nextafter(a, np.inf if ulps > 0 else -np.inf)
+    return a
+
+
+@pytest.mark.parametrize("use_filter", [True, False])
+def test_boundary_beams_are_assigned_from_integers(monkeypatch: pytest.MonkeyPatch, use_filter: bool) -> None:
+    cam = DepthCamera(169, 64, camera_vfov(D(30), D(90)), 0.05, 100.0)
+    dirs = grid_directions(256, 16, 4, D(30))
+    grid = grid_columns(256, 16, 4)
+    make = spherical_filter if use_filter else legacy_grid
+    true_sensor_angles = sensor_angles
+    maps = {}
+    for ulps in (-2, -1, 0, 1, 2):
+        # Trigonometry one or two ulps off (another CPU's sin/cos/atan2): the boundary beams'
+        # azimuths fall either side of the sector boundary.
+        def perturbed(d: np.ndarray, u: int = ulps) -> tuple[np.ndarray, np.ndarray]:
+            return _boundary_azimuths(grid, u), true_sensor_angles(d)[1]
+
+        monkeypatch.setattr(filter_module, "sensor_angles", perturbed)
+        maps[ulps] = (make(dirs, cam, 4, grid), make(dirs, cam, 4))
+    with_grid = [m for m, _ in maps.values()]
+    for m in with_grid:
+        assert np.array_equal(m.camera, grid.cameras(4))
+        assert np.bincount(m.camera).tolist() == [1024] * 4
+        assert np.array_equal(m.x_d, with_grid[0].x_d) and np.array_equal(m.y_d, with_grid[0].y_d)
+    # Without the integers the same perturbations move the boundary columns between cameras.
+    assert len({tuple(np.bincount(m.camera, minlength=4)) for _, m in maps.values()}) > 1
+
+
+def test_azimuth_grid_rejects_directions_off_the_grid() -> None:
+    from seatwin.sensors.depthbuffer.model import DepthBufferConfig, DepthBufferLidar
+    from seatwin.sensors.lidar_config import VLP16
+
+    dirs = VLP16.with_(columns=64).sensor_directions()
+    DepthBufferLidar(dirs, DepthBufferConfig(), AzimuthGrid.lidar(64, VLP16.rings))  # on the grid
+    with pytest.raises(ValueError, match="azimuth grid"):
+        DepthBufferLidar(dirs, DepthBufferConfig(), AzimuthGrid(-np.repeat(np.arange(64), VLP16.rings), 65))  # 65 columns
 
 
 def test_legacy_grid_rows_are_flat() -> None:

@@ -44,7 +44,7 @@ def wall_scene() -> Scene:
 
 
 def fixed(scene, config=EXACT, z=-2.0, **kw) -> Lidar:
-    return Lidar(scene, config, LidarMount(0.0, 0.0, z), platform=None, **kw)
+    return Lidar(scene, config, LidarMount(x=0.0, y=0.0, z=z), platform=None, **kw)
 
 
 def test_vlp16_presets() -> None:
@@ -138,7 +138,7 @@ def test_thesis_return_model_functions() -> None:
     m = IntensityModel(scale=255.0, reference_range=10.0, exponent=2.0)
     out = intensity(np.float32([1.0, 1.0, 0.5, 1.0]), np.float32([1.0, 1.0, 1.0, 0.5]), np.float32([5.0, 20.0, 10.0, 10.0]), m)
     np.testing.assert_allclose(out, [255.0, 255.0 / 4, 127.5, 127.5], rtol=1e-6)
-    assert return_probability(np.float32([60.0]), RangeDissipation(60.0, 8.0))[0] == pytest.approx(0.5)
+    assert return_probability(np.float32([60.0]), RangeDissipation(half_range=60.0, width=8.0))[0] == pytest.approx(0.5)
     np.testing.assert_allclose(water_limit(np.float32([-3.0, -3.0]), np.float32([0.5, -0.5]), 100.0), [6.0, 100.0])
     np.testing.assert_allclose(cos_incidence(np.float32([[0, 0, 4], [0, 0, 0]]), np.float32([[0, 0.6, -0.8], [1, 0, 0]])), [0.8, 0.0], atol=1e-6)
 
@@ -154,7 +154,7 @@ def test_vessels_move_during_the_sweep() -> None:
     speed = 40.0
     sc = moving_scenario(speed)
     scene = Scene([], {"own": (box_vessel(), sc.vessels[0].trajectory), "tgt": (box_vessel(), sc.vessels[1].trajectory)})
-    lid = Lidar(scene, EXACT, LidarMount(0.0, 0.0, -2.0), platform="own", self_returns=False)
+    lid = Lidar(scene, EXACT, LidarMount(x=0.0, y=0.0, z=-2.0), platform="own", self_returns=False)
     start = T0
     s = lid.sweep(start, 0)
     w = sweep_to_world(lid, s)
@@ -183,7 +183,7 @@ def test_vessel_hidden_behind_a_nearer_one_and_self_returns() -> None:
         },
     )
     # 1 m above the ownship's 3 m deck: steep beams hit its own deck.
-    lid = Lidar(scene, EXACT, LidarMount(0.0, 0.0, -4.0), platform="own")
+    lid = Lidar(scene, EXACT, LidarMount(x=0.0, y=0.0, z=-4.0), platform="own")
     s = lid.sweep(T0, 0)
     ids = set(np.unique(s.object_id).tolist())
     assert scene.vessel_ids["own"] in ids and scene.vessel_ids["near"] in ids
@@ -193,14 +193,14 @@ def test_vessel_hidden_behind_a_nearer_one_and_self_returns() -> None:
     far = s.object_id == scene.vessel_ids["far"]
     assert not (far & (np.abs(w[:, 0]) < 1.0)).any()  # straight behind "near": hidden
     # Without self-returns the deck is not seen.
-    s2 = Lidar(scene, EXACT, LidarMount(0.0, 0.0, -4.0), platform="own", self_returns=False).sweep(T0, 0)
+    s2 = Lidar(scene, EXACT, LidarMount(x=0.0, y=0.0, z=-4.0), platform="own", self_returns=False).sweep(T0, 0)
     assert scene.vessel_ids["own"] not in s2.object_id
 
 
 def test_moving_ownship_poses_the_sensor_per_column() -> None:
     own = line(0.0, 0.0, 5.0, 0.0, 0.0)
     scene = Scene([WorldObject("wall", "quay", block(30.0, 31.0, -80.0, 80.0, 6.0, -1.0), 0.3)], {"own": (box_vessel(), own)})
-    lid = Lidar(scene, EXACT, LidarMount(0.0, 0.0, -4.0), platform="own", self_returns=False)
+    lid = Lidar(scene, EXACT, LidarMount(x=0.0, y=0.0, z=-4.0), platform="own", self_returns=False)
     s = lid.sweep(T0 + 1.0, 0)
     w = sweep_to_world(lid, s)
     np.testing.assert_allclose(w[:, 0], 30.0, atol=2e-3)  # the wall stays put in the world
@@ -249,8 +249,8 @@ def test_scenario_lidar_and_sweep_schedule() -> None:
 def test_batched_sweeps_equal_single_sweeps() -> None:
     sc = moving_scenario(6.0)
     scene = Scene.from_scenario(sc)
-    cfg = VLP16.with_(dissipation=RangeDissipation(30.0, 5.0))
-    lid = Lidar(scene, cfg, LidarMount(0.0, 0.0, -3.0, yaw_deg=30.0, roll_deg=180.0), platform="own", seed=3)
+    cfg = VLP16.with_(dissipation=RangeDissipation(half_range=30.0, width=5.0))
+    lid = Lidar(scene, cfg, LidarMount(x=0.0, y=0.0, z=-3.0, yaw_deg=30.0, roll_deg=180.0), platform="own", seed=3)
     starts = [T0 + 0.5, T0 + 0.6, T0 + 0.7]
     batched = lid.sweeps(starts, [5, 6, 7])
     for s, start, frame in zip(batched, starts, [5, 6, 7]):

@@ -9,12 +9,13 @@ import numpy as np
 import pytest
 
 from seatwin.cli.main import run
-from seatwin.errors import InputError
+from seatwin.cli.sweep import parse_strengths
+from seatwin.errors import ParameterError
 from seatwin.recording.messages import quaternion_from_matrix
 from seatwin.sensors.lidar_config import MILLIAMPERE_LIDAR_MOUNT
-from seatwin.sweep import DEGRADATIONS, degradation, parse_kinds
+from seatwin.sim import SimulationSettings
+from seatwin.sweep import DEGRADATIONS, SweepSettings, degradation, degradations, run_sweep
 from seatwin.sweep.results import SweepResult, SweepRow, spearman_by_kind
-from seatwin.sweep.runner import parse_strengths
 
 
 @pytest.fixture(scope="module")
@@ -76,31 +77,59 @@ def test_degradation_settings_and_parsing():
     assert DEGRADATIONS["mount"].settings(2.0) == {"mount_yaw_bias_deg": 2.0}
     assert DEGRADATIONS["dissipation"].settings(1.0) == {"dissipation": True}
     assert DEGRADATIONS["drop"].reference == pytest.approx(0.8)
-    with pytest.raises(InputError):
+    for d in DEGRADATIONS.values():  # every kind sets fields of SimulationSettings, validly
+        for s in d.default_strengths:
+            SimulationSettings().with_(**d.settings(s))
+    with pytest.raises(ParameterError) as exc:
         DEGRADATIONS["drop"].settings(0.5)  # below the reference model's drop: not a degradation
-    with pytest.raises(InputError):
+    assert exc.value.param == "strengths"
+    with pytest.raises(ParameterError) as exc:
         degradation("blur")
-    with pytest.raises(InputError):
-        parse_kinds("noise,noise")
-    kinds = parse_kinds("noise,mount")
+    assert exc.value.param == "kinds"
+    with pytest.raises(ParameterError):
+        degradations(["noise", "noise"])
+    kinds = ("noise", "mount")
     assert parse_strengths("noise=0.1,0.2; mount=1", kinds) == {"noise": (0.1, 0.2), "mount": (1.0,)}
-    assert parse_strengths("0.3", parse_kinds("noise")) == {"noise": (0.3,)}
-    with pytest.raises(InputError):
+    assert parse_strengths("0.3", ("noise",)) == {"noise": (0.3,)}
+    with pytest.raises(ParameterError):
         parse_strengths("0.3", kinds)
-    with pytest.raises(InputError):
+    with pytest.raises(ParameterError):
         parse_strengths("drop=0.9", kinds)
 
 
+@pytest.mark.parametrize(("changes", "param"), [
+    ({"kinds": ()}, "kinds"), ({"kinds": ("blur",)}, "kinds"), ({"kinds": ("noise", "noise")}, "kinds"),
+    ({"seeds": ()}, "seeds"), ({"seeds": (1, 1)}, "seeds"), ({"duration": 0.0}, "duration"), ({"offset": -1.0}, "offset"),
+    ({"kinds": ("noise",), "strengths": {"noise": (0.01,)}}, "strengths"),
+    ({"kinds": ("noise",), "strengths": {"mount": (1.0,)}}, "strengths"),
+    ({"kinds": ("noise",), "strengths": {"noise": (0.1, 0.1)}}, "strengths"),
+])
+def test_sweep_settings_name_the_bad_parameter(changes, param):
+    with pytest.raises(ParameterError) as exc:
+        SweepSettings().with_(**changes)
+    assert exc.value.param == param and "--" not in str(exc.value)
+
+
+def test_window_outside_the_scenario_names_the_parameter(tmp_path):
+    with pytest.raises(ParameterError) as exc:
+        run_sweep(tmp_path / "a", kinds=("mount",), duration=1e5)
+    assert exc.value.param == "duration"
+    with pytest.raises(ParameterError) as exc:
+        run_sweep(tmp_path / "b", kinds=("mount",), duration=10.0, offset=1e5)
+    assert exc.value.param == "offset"
+    assert not (tmp_path / "a" / "tracks").exists()
+
+
 def test_spearman_by_kind_hand_values():
-    settings = {"kinds": ["noise"], "references": {"noise": 0.0}}
+    settings = SweepSettings(kinds=("noise",), strengths={"noise": (1.0, 2.0)})
     rows = [SweepRow("reference", 0.0, s, s, 0.0, 10, 0.0, 1) for s in (1, 2)]
     rows += [SweepRow("noise", x, s, s, a, 10, 0.0, 1) for x, s, a in [(1, 1, 0.2), (1, 2, 0.3), (2, 1, 0.25), (2, 2, 0.5)]]
     rho = spearman_by_kind(SweepResult(settings, rows))["noise"]
-    assert rho["rho_means"] == pytest.approx(1.0)
+    assert rho.rho_means == pytest.approx(1.0)
     # points: strength ranks (1.5,1.5,3.5,3.5,5.5,5.5), AHED ranks (1.5,1.5,3,5,4,6) → 14/√(16·17)
-    assert rho["rho_points"] == pytest.approx(14 / np.sqrt(16 * 17))
+    assert rho.rho_points == pytest.approx(14 / np.sqrt(16 * 17))
     # degraded only: ranks (1.5,1.5,3.5,3.5) and (1,3,2,4) → 2/√(4·5)
-    assert rho["rho_degraded"] == pytest.approx(2 / np.sqrt(20))
+    assert rho.rho_degraded == pytest.approx(2 / np.sqrt(20))
 
 
 def test_cli_bad_input(tmp_path, capsys):
@@ -108,5 +137,7 @@ def test_cli_bad_input(tmp_path, capsys):
     assert run(["sweep", "--out", str(tmp_path / "b"), "--seeds", "0"]) == 2
     assert run(["sweep", "--out", str(tmp_path / "c"), "--kinds", "noise", "--strengths", "noise=abc"]) == 2
     assert run(["sweep", "--out", str(tmp_path / "d"), "--kinds", "mount", "--duration", "500"]) == 2
+    assert run(["sweep", "--out", str(tmp_path / "e"), "--kinds", "noise", "--strengths", "noise=0.001"]) == 2
     err = capsys.readouterr().err
-    assert "blur" in err and "--seeds" in err and "abc" in err
+    assert "blur" in err and "--seeds" in err and "abc" in err and "--duration" in err and "--strengths" in err
+    assert err.count("\n") == 5

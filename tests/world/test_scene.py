@@ -63,3 +63,26 @@ def test_unknown_model_and_water() -> None:
         Scene.from_scenario(sc)
     sc.environment.update(water="flat", harbour="none")
     assert Scene.from_scenario(sc).static_objects == []
+
+
+def test_a_bad_harbour_override_names_the_parameter() -> None:
+    from seatwin.errors import ParameterError
+
+    sc = scenario()
+    with pytest.raises(ParameterError, match="unknown harbour") as exc:
+        Scene.from_scenario(sc, harbour="atlantis")
+    assert exc.value.param == "harbour"
+    sc.environment["harbour"] = "atlantis"  # the scenario's own harbour: the scenario is named
+    with pytest.raises(InputError, match="unknown harbour") as exc2:
+        Scene.from_scenario(sc)
+    assert not isinstance(exc2.value, ParameterError) and exc2.value.where == "environment.harbour"
+
+
+def test_a_scene_takes_any_scenario_shaped_object() -> None:
+    from types import SimpleNamespace
+
+    sc = scenario()
+    vessels = [SimpleNamespace(**vars(v)) for v in sc.vessels]
+    duck = SimpleNamespace(source="duck", environment={"harbour": "none"}, vessels=vessels)
+    scene = Scene.from_scenario(duck)
+    assert scene.vessel_names == ["own", "tgt"] and scene.static_objects == []

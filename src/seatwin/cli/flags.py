@@ -29,6 +29,8 @@ FLAG_OF: dict[str, str] = {
     "plots_csv": "--out",
     "run_dir": "--out-bag",
     "radar_config": "--radar",
+    "n_boot": "--boot",
+    "seed0": "--seed",
 }
 
 

@@ -38,7 +38,7 @@ def register(app: typer.Typer) -> None:
         first_half: bool = typer.Option(False, "--first-half", help="Fit on the first half of the scans only."),
         seed: int = typer.Option(0, "--seed", help="Seed of the bootstrap."),
     ) -> None:
-        from seatwin.pipeline.radar import fit_radar_to_recording
+        from seatwin.fidelity.radar_fit import fit_radar_to_recording
         from seatwin.sensors.radar.config import save_radar_config
 
         res, obs = fit_radar_to_recording(recording, truth=truth, base=base, first_half=first_half, gate=gate, boot=boot,

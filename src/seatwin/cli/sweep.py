@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Optional
 
 import typer
+
+from seatwin.cli.output import split_list
+from seatwin.errors import ParameterError
 
 _HELP = (
     "Fidelity sweep: compare a reference synthetic dataset with copies made by deliberately degraded "
@@ -20,57 +23,94 @@ _HELP = (
 )
 
 
+def parse_floats(text: str, param: str) -> tuple[float, ...]:
+    """``"0.1,0.2"`` → ``(0.1, 0.2)`` (a ``ParameterError`` naming ``param`` otherwise)."""
+    try:
+        values = tuple(float(p) for p in text.split(",") if p.strip())
+    except ValueError:
+        values = ()
+    if not values:
+        raise ParameterError(param, f"expected comma-separated numbers, got {text!r}")
+    return values
+
+
+def parse_strengths(text: str | None, kinds: Sequence[str]) -> dict[str, tuple[float, ...]]:
+    """``"noise=0.1,0.2;mount=1,2"`` → per-kind strengths; a bare list applies to a single kind."""
+    if not text:
+        return {}
+    out: dict[str, tuple[float, ...]] = {}
+    for part in (p.strip() for p in text.split(";") if p.strip()):
+        if "=" not in part:
+            if len(kinds) != 1:
+                raise ParameterError("strengths", "with several kinds write KIND=S1,S2;KIND=… (e.g. noise=0.1,0.2;mount=1,2)")
+            out[kinds[0]] = parse_floats(part, "strengths")
+            continue
+        kind, values = (x.strip() for x in part.split("=", 1))
+        if kind not in kinds:
+            raise ParameterError("strengths", f"{kind!r} is not among the swept kinds {list(kinds)}")
+        out[kind] = parse_floats(values, "strengths")
+    return out
+
+
 def register(app: typer.Typer) -> None:
     @app.command("sweep", help=_HELP)
     def sweep_cmd(
-        scenario: str = typer.Argument("ferry_crossing", metavar="[SCENARIO]", help="Built-in scenario name or scenario file (default ferry_crossing)."),
-        out: Path = typer.Option(..., "--out", metavar="DIR", help="Folder for sweep.csv, sweep.json, sweep.png and tracks/ (must not hold an earlier sweep)."),
-        kinds: str = typer.Option("noise,drop,dissipation,mount", "--kinds", metavar="LIST", help="Comma-separated degradations: noise, drop, dissipation, mount."),
-        strengths: Optional[str] = typer.Option(None, "--strengths", metavar="KIND=S,S;…", help="Strengths per kind, e.g. 'noise=0.05,0.2;mount=1,2' (a bare list with one kind). Default: noise 0.05,0.1,0.2,0.4 m; drop 0.85,0.9,0.95,0.98; dissipation 1; mount 0.5,1,2,4 deg."),
-        seeds: int = typer.Option(3, "--seeds", metavar="N", help="Repeat every point with seeds 1…N and show the spread."),
+        scenario: str = typer.Argument(
+            "ferry_crossing", metavar="[SCENARIO]",
+            help="Built-in scenario name or scenario file (default ferry_crossing)."),
+        out: Path = typer.Option(
+            ..., "--out", metavar="DIR",
+            help="Folder for sweep.csv, sweep.json, sweep.png and tracks/ (must not hold an earlier sweep)."),
+        kinds: str = typer.Option(
+            "noise,drop,dissipation,mount", "--kinds", metavar="LIST",
+            help="Comma-separated degradations: noise, drop, dissipation, mount."),
+        strengths: str | None = typer.Option(
+            None, "--strengths", metavar="KIND=S,S;…",
+            help="Strengths per kind, e.g. 'noise=0.05,0.2;mount=1,2' (a bare list with one kind). Default: noise "
+                 "0.05,0.1,0.2,0.4 m; drop 0.85,0.9,0.95,0.98; dissipation 1; mount 0.5,1,2,4 deg."),
+        seeds: int = typer.Option(
+            3, "--seeds", metavar="N", min=1,
+            help="Repeat every point with seeds 1…N and show the spread."),
         duration: float = typer.Option(30.0, "--duration", metavar="S", help="Simulated seconds per run."),
-        offset: Optional[float] = typer.Option(None, "--offset", metavar="S", help="Window start in seconds after the scenario's start (default: the window centred in the scenario)."),
-        tuning: str = typer.Option("synthetic", "--tuning", metavar="NAME|FILE", help="Tracker tuning for every run (preset synthetic, real, joyride, or a file)."),
-        keep_recordings: bool = typer.Option(False, "--keep-recordings", help="Keep every simulated recording under DIR/recordings (large)."),
+        offset: float | None = typer.Option(
+            None, "--offset", metavar="S",
+            help="Window start in seconds after the scenario's start (default: the window centred in the scenario)."),
+        tuning: str = typer.Option(
+            "synthetic", "--tuning", metavar="NAME|FILE",
+            help="Tracker tuning for every run (preset synthetic, real, joyride, or a file)."),
+        keep_recordings: bool = typer.Option(
+            False, "--keep-recordings",
+            help="Keep every simulated recording under DIR/recordings (large)."),
         progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar."),
     ) -> None:
-        import sys
+        from seatwin.cli.output import check_output_dir, progress_counter
+        from seatwin.settings import validated
+        from seatwin.sweep import SweepSettings, plot_sweep, run_sweep, spearman_by_kind, summarise, write_results
 
-        from seatwin.errors import InputError
-        from seatwin.sweep import SweepSettings, parse_kinds, plot_sweep, run_sweep, write_results
-        from seatwin.sweep.results import result_table
-        from seatwin.sweep.runner import parse_strengths
+        chosen = split_list(kinds, "kinds") or ()
+        settings = validated(SweepSettings, {
+            "scenario": scenario, "kinds": chosen, "strengths": parse_strengths(strengths, chosen),
+            "seeds": tuple(range(1, seeds + 1)), "duration": duration, "offset": offset, "tuning": tuning,
+            "keep_recordings": keep_recordings,
+        })
+        check_output_dir(out, "out")
+        total, done = settings.n_steps(), 0
+        with progress_counter("sweep", progress, min_total=1) as advance:
+            def step(_name: str) -> None:
+                nonlocal done
+                done += 1
+                advance(done, total)
 
-        if seeds < 1:
-            raise InputError("--seeds", f"expected at least 1 seed, got {seeds}")
-        chosen = parse_kinds(kinds)
-        settings = SweepSettings(scenario, tuple(chosen), parse_strengths(strengths, chosen),
-                                 seeds=tuple(range(1, seeds + 1)), duration=duration, offset=offset, tuning=tuning)
-        settings.check()
-        bar = None
-        if progress and sys.stderr.isatty():
-            from rich.console import Console
-            from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
-
-            bar = Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
-                           console=Console(stderr=True), transient=True)
-            bar.start()
-            task = bar.add_task("sweep", total=settings.n_steps())
-        try:
-            result = run_sweep(settings, out, step=(lambda name: bar.update(task, advance=1, description=name)) if bar else None)
-        finally:
-            if bar is not None:
-                bar.stop()
+            result = run_sweep(out, settings, step=step)
         csv_path, json_path = write_results(out, result)
         png = plot_sweep(result, out / "sweep.png")
-        table = result_table(result)
-        for kind, r in table["spearman"].items():
-            means = ", ".join(f"{s['strength']:g}: {s['ahed_mean']:.3f}" if s["ahed_mean"] is not None else f"{s['strength']:g}: –"
-                              for s in table["summary"][kind])
-            rho = r["rho_points"]
-            typer.echo(f"{kind:12s} ρ = {rho:.2f}  " if rho is not None else f"{kind:12s} ρ = –     ", nl=False)
+        for kind, rho in spearman_by_kind(result).items():
+            means = ", ".join(f"{s.strength:g}: {s.ahed_mean:.3f}" if s.ahed_mean is not None else f"{s.strength:g}: –"
+                              for s in summarise(result.kind_rows(kind)))
+            r = rho.rho_points
+            typer.echo(f"{kind:12s} ρ = {r:.2f}  " if r is not None else f"{kind:12s} ρ = –     ", nl=False)
             typer.echo(f"mean AHED by strength {means}")
-        floor = table["seed_to_seed_floor"]
-        if floor["mean"] is not None:
-            typer.echo(f"seed-to-seed AHED: mean {floor['mean']:.3f}, max {floor['max']:.3f}")
+        mean, top = result.floor_mean_max()
+        if mean is not None:
+            typer.echo(f"seed-to-seed AHED: mean {mean:.3f}, max {top:.3f}")
         typer.echo(f"wrote {csv_path}, {json_path}, {png}")

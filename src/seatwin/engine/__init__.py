@@ -10,7 +10,8 @@ The interface is deliberately narrow so that a GPU back end (e.g. Warp) can be a
 * :func:`make_caster` — build a caster over meshes with a named back end (``"embree"``).
 """
 
-from seatwin.engine.base import MeshData, RayCaster, RayHits, make_caster
+from seatwin.engine.backends import make_caster
+from seatwin.engine.base import MeshData, RayCaster, RayHits
 from seatwin.engine.embree import EmbreeCaster
 
 __all__ = ["EmbreeCaster", "MeshData", "RayCaster", "RayHits", "make_caster"]

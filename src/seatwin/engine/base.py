@@ -1,8 +1,7 @@
-"""The ray-casting interface shared by every back end."""
+"""The ray-casting interface shared by every back end (imports no back end: :mod:`.backends` picks one)."""
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Protocol, runtime_checkable
 
@@ -88,11 +87,3 @@ class RayCaster(Protocol):
         (outward for consistently wound closed meshes), unit length."""
         ...
 
-
-def make_caster(meshes: Sequence[MeshData], backend: str = "embree", threads: int | None = None) -> RayCaster:
-    """A caster over ``meshes`` with the named back end (``"embree"``)."""
-    if backend == "embree":
-        from seatwin.engine.embree import EmbreeCaster
-
-        return EmbreeCaster(meshes, threads=threads)
-    raise ValueError(f"unknown ray-casting back end {backend!r}; known: 'embree'")

@@ -12,11 +12,15 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from seatwin.errors import InputError
+
+if TYPE_CHECKING:
+    from seatwin.recording import Recording, VesselTruth
 
 RECORDING_SUFFIXES = (".mcap", ".bag", ".db3")
 
@@ -112,8 +116,48 @@ def _is_recording(path: Path) -> bool:
     return path.suffix.lower() in RECORDING_SUFFIXES or path.is_dir()
 
 
+def truth_from_scenario_file(path: Path) -> dict[str, VesselTruth]:
+    """Every vessel's ground truth from a scenario file: a Gemini CSV (vessels ``V1``, ``V2``, …; the last
+    is taken as the ownship, as in the Gemini data) or any format ``seatwin.scenario`` can load."""
+    from seatwin.recording import VesselTruth
+
+    if not path.is_file():
+        raise InputError(path, "scenario file not found")
+    if path.suffix.lower() == ".csv":
+        from seatwin.scenario.gemini_csv import read_gemini_csv
+
+        trajs = read_gemini_csv(path)
+        last = max(trajs) if trajs else None
+        vessels = [(f"V{n}", tr, n == last) for n, tr in trajs.items()]
+    else:
+        from seatwin.scenario.load import load_scenario
+
+        sc = load_scenario(path)
+        vessels = [(v.name, v.trajectory, getattr(v.role, "value", v.role) == "ownship") for v in sc.vessels]
+    out = {}
+    for name, tr, own in vessels:
+        s = tr.state_at(tr.time)
+        out[name] = VesselTruth(name, tr.time.copy(), s.north, s.east, np.zeros_like(s.north), s.heading,
+                                s.v_north, s.v_east, s.yaw_rate, ownship=own, source=str(path))
+    return out
+
+
+def recording_truth(rec: Recording, scenario: str | os.PathLike[str] | None = None) -> dict[str, VesselTruth]:
+    """Every vessel's ground truth for an open recording: from ``scenario`` if given, else the bag's
+    odometry/pose topics, else the scenario file beside the bag (:meth:`Recording.scenario_file`)."""
+    if scenario is not None:
+        return truth_from_scenario_file(Path(scenario))
+    truth = rec.ground_truth()
+    if truth:
+        return truth
+    beside = rec.scenario_file()
+    if beside is None:
+        raise InputError(rec.bag, "no ground truth: no odometry/pose topics and no scenario file beside the bag")
+    return truth_from_scenario_file(beside)
+
+
 def truth_from_recording(path: str | os.PathLike[str]) -> TruthSet:
-    """The targets' ground truth in a recording (our odometry topics, or the scenario beside the bag).
+    """The targets' ground truth in a recording (:func:`recording_truth`).
 
     Velocities are re-derived from the positions by numerical differentiation, as in the thesis
     (5.2.1), whatever velocities the recording carries.
@@ -121,7 +165,7 @@ def truth_from_recording(path: str | os.PathLike[str]) -> TruthSet:
     from seatwin.recording import open_bag
 
     with open_bag(path) as rec:
-        vessels = rec.ground_truth()
+        vessels = recording_truth(rec)
     out = {name: TruthTrack(name, v.time, v.north, v.east, source=str(path))
            for name, v in vessels.items() if not v.ownship}
     if not out:

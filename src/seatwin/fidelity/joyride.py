@@ -15,13 +15,22 @@ target's heading sets its aspect and so its visible width and detection probabil
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
-from seatwin.errors import InputError
+from seatwin.errors import InputError, ParameterError
+
+if TYPE_CHECKING:
+    from seatwin.scenario.model import Scenario
+    from seatwin.sensors.radar.config import RadarConfig
+    from seatwin.sensors.radar.fit import RadarObservations
+    from seatwin.sensors.radar.model import RadarModel, RadarScan
+    from seatwin.world.scene import Scene
 
 MIN_SPEED = 0.5
 """m/s: below it a vessel keeps its previous heading."""
@@ -68,7 +77,8 @@ def _count_invalid(path: str | Path, kept: list[NDArray[np.float64]]) -> int:
     return int(sum(np.asarray(c).reshape(-1, 2).shape[0] if np.asarray(c).size else 0 for c in cells) - sum(len(k) for k in kept))
 
 
-def heading_from_velocity(v_north: NDArray[np.float64], v_east: NDArray[np.float64], min_speed: float = MIN_SPEED) -> NDArray[np.float64]:
+def heading_from_velocity(v_north: NDArray[np.float64], v_east: NDArray[np.float64],
+                          min_speed: float = MIN_SPEED) -> NDArray[np.float64]:
     """Course over ground [rad], held while slower than ``min_speed`` (0 until the first fast sample)."""
     h = np.arctan2(v_east, v_north)
     fast = np.hypot(v_north, v_east) >= min_speed
@@ -80,7 +90,7 @@ def heading_from_velocity(v_north: NDArray[np.float64], v_east: NDArray[np.float
     return h[idx]
 
 
-def replica_scenario(data: JoyrideData, target_size: tuple[float, float, float] = TARGET_SIZE):  # noqa: ANN201
+def replica_scenario(data: JoyrideData, target_size: tuple[float, float, float] = TARGET_SIZE) -> Scenario:
     """A :class:`seatwin.scenario.Scenario` of the two boats (headings from velocity)."""
     from seatwin.scenario.model import Dimensions, Role, Scenario, Trajectory, Vessel
 
@@ -92,7 +102,7 @@ def replica_scenario(data: JoyrideData, target_size: tuple[float, float, float] 
     return Scenario("joyride-replica", [own, tgt], environment={"harbour": "none", "water": "flat"}, rig=None, source=data.source)
 
 
-def replica_scene(data: JoyrideData, target_size: tuple[float, float, float] = TARGET_SIZE):  # noqa: ANN201
+def replica_scene(data: JoyrideData, target_size: tuple[float, float, float] = TARGET_SIZE) -> Scene:
     """The scene: no static world, the two vessels with generic hulls of their sizes."""
     from seatwin.world.scene import Scene
     from seatwin.world.vessels import vessel_model
@@ -102,16 +112,32 @@ def replica_scene(data: JoyrideData, target_size: tuple[float, float, float] = T
     return Scene([], vessels)
 
 
-def simulate_replica(data: JoyrideData, model, scene=None, indices=None) -> list:  # noqa: ANN001
-    """The radar model's scans at the dataset's scan times (frame index = scan index)."""
-    from seatwin.sensors.radar.world import scan_scene
+def simulate_replica(data: JoyrideData, model: RadarModel, scene: Scene | None = None,
+                     indices: Sequence[int] | None = None) -> list[RadarScan]:
+    """The radar model's scans at the dataset's scan times (all, or the increasing scan ``indices``).
+
+    Through the one simulation loop (:func:`seatwin.sim.loop.frames`) with a
+    :class:`seatwin.sim.radar.RadarSensor` replaying the scan times; the frame index (and so
+    every random draw) is the scan index, whichever scans are simulated.
+    """
+    from seatwin.sim.loop import frames
+    from seatwin.sim.radar import RadarSensor
 
     scene = scene or replica_scene(data)
-    idx = range(len(data)) if indices is None else indices
-    return [scan_scene(model, scene, OWNSHIP, int(k), float(data.time[k])) for k in idx]
+    if indices is None:
+        sensor = RadarSensor(model, scene, OWNSHIP, times=data.time)
+    else:
+        idx = np.asarray(indices, dtype=np.int64).reshape(-1)
+        if len(idx) and ((np.diff(idx) <= 0).any() or idx[0] < 0 or idx[-1] >= len(data)):
+            raise ParameterError("indices", f"expected increasing scan indices in [0, {len(data)})")
+        sensor = RadarSensor(model, scene, OWNSHIP, times=data.time[idx], frame_ids=idx)
+    if not len(sensor.times):
+        return []
+    t0 = float(sensor.times[0])
+    return [scan for _, _, _, scan in frames([sensor], t0, float(sensor.times[-1]) + 1.0)]
 
 
-def target_visible_area(data: JoyrideData, config, scene=None) -> NDArray[np.float64]:  # noqa: ANN001
+def target_visible_area(data: JoyrideData, config: RadarConfig, scene: Scene | None = None) -> NDArray[np.float64]:
     """The target's visible area [m²] seen by the radar at each scan (from the replica's geometry; NaN if unseen)."""
     from seatwin.sensors.radar.geometry import illuminate
     from seatwin.sensors.radar.model import RadarModel
@@ -129,7 +155,7 @@ def target_visible_area(data: JoyrideData, config, scene=None) -> NDArray[np.flo
     return out
 
 
-def observations(data: JoyrideData, config=None, scene=None):  # noqa: ANN001, ANN201
+def observations(data: JoyrideData, config: RadarConfig | None = None, scene: Scene | None = None) -> RadarObservations:
     """The dataset as :class:`seatwin.sensors.radar.fit.RadarObservations` (target area from the replica)."""
     from seatwin.sensors.radar.config import RadarConfig
     from seatwin.sensors.radar.fit import RadarObservations
@@ -137,14 +163,14 @@ def observations(data: JoyrideData, config=None, scene=None):  # noqa: ANN001, A
     config = config or RadarConfig()
     area = target_visible_area(data, config, scene)
     area = np.where(np.isfinite(area), area, np.nanmedian(area) if np.isfinite(area).any() else TARGET_SIZE[0] * TARGET_SIZE[2])
-    return RadarObservations(
-        data.time, data.plots, data.ownship[:, [0, 2]] + _mount(config, data), data.target[:, [0, 2]], area, data.source
-    )
+    return RadarObservations(data.time, data.plots, antenna_positions(data, config), data.target[:, [0, 2]], area, data.source)
 
 
-def _mount(config, data: JoyrideData) -> NDArray[np.float64]:  # noqa: ANN001
+def antenna_positions(data: JoyrideData, config: RadarConfig) -> NDArray[np.float64]:
+    """North/east of the radar antenna at each scan: the ownship's position plus ``config``'s mount,
+    turned by the heading from velocity."""
     h = heading_from_velocity(data.ownship[:, 1], data.ownship[:, 3])
-    return np.column_stack([
+    return data.ownship[:, [0, 2]] + np.column_stack([
         config.mount_x_m * np.cos(h) - config.mount_y_m * np.sin(h),
         config.mount_x_m * np.sin(h) + config.mount_y_m * np.cos(h),
     ])

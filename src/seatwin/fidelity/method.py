@@ -16,53 +16,34 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
-from seatwin.errors import InputError
-from seatwin.fidelity.joyride import TARGET, TARGET_SIZE, JoyrideData, heading_from_velocity, observations, replica_scene, simulate_replica
+from seatwin.fidelity.joyride import (
+    TARGET,
+    TARGET_SIZE,
+    JoyrideData,
+    antenna_positions,
+    observations,
+    replica_scene,
+    simulate_replica,
+)
+from seatwin.fidelity.options import FidelityOptions
+from seatwin.fidelity.results import AgentResult, FidelityResult, ModelResult, OffTarget, PlotStatistics, SeedResult, WindowStats
+from seatwin.settings import validated
 
-FIT_ON = ("none", "first-half", "all")
-AGENTS = ("jipda", "gnn")
-
-
-@dataclass
-class FidelityOptions:
-    """Every choice of a fidelity run (the CLI's options)."""
-
-    tuning: str = "joyride"
-    fit_on: str = "none"
-    seeds: int = 5
-    n_boot: int = 1000
-    block: int = 10
-    """Bootstrap block length [instants] (HED is autocorrelated over a few scans)."""
-    fit_boot: int = 200
-    radar: str | None = None
-    """A radar YAML to start from (default: the built-in default model)."""
-    clutter: str = "uniform"
-    """Clutter form of the fit: ``uniform`` or ``map``."""
-    agents: tuple[str, ...] = AGENTS
-    seed0: int = 0
-    calibrate_bias: bool = False
-    """Set the tuning's radar ``bearing_bias`` to the fitted bearing bias (both datasets, every model;
-    estimated on the fit's scans only, so no peeking with ``first-half``)."""
-
-    def __post_init__(self) -> None:
-        if self.fit_on not in FIT_ON:
-            raise InputError("--fit-on", f"expected one of {', '.join(FIT_ON)}, got {self.fit_on!r}")
-        if self.calibrate_bias and self.fit_on == "none":
-            raise InputError("--calibrate-bias", "needs a fit: use it with --fit-on first-half or all")
-        if self.seeds < 1:
-            raise InputError("--seeds", f"expected at least 1, got {self.seeds}")
-        bad = [a for a in self.agents if a not in AGENTS]
-        if bad:
-            raise InputError("--agents", f"unknown agent(s) {bad}; expected {', '.join(AGENTS)}")
+if TYPE_CHECKING:
+    from seatwin.evaluation import Tracks, TruthSet
+    from seatwin.evaluation.compare import ComparisonSeries
+    from seatwin.perception.measurements import Scan
+    from seatwin.sensors.radar.config import RadarConfig
+    from seatwin.tracking import TrackerConfig
+    from seatwin.world.scene import Scene
 
 
-def tracker_scans(time: NDArray[np.float64], plots: list[NDArray[np.float64]], antenna: NDArray[np.float64]) -> list:
+def tracker_scans(time: NDArray[np.float64], plots: list[NDArray[np.float64]], antenna: NDArray[np.float64]) -> list[Scan]:
     """Range–bearing radar scans for the tracker (world frame, about the antenna; no land mask, no
     merging: the joyride recording's own hint), through :func:`seatwin.perception.radar.radar_scan`."""
     from seatwin.perception.radar import radar_scan
@@ -70,26 +51,23 @@ def tracker_scans(time: NDArray[np.float64], plots: list[NDArray[np.float64]], a
     return [radar_scan(p, float(t), float(a[0]), float(a[1])) for t, p, a in zip(time, plots, antenna)]
 
 
-def run_agent(scans: list, tuning, agent: str):  # noqa: ANN001, ANN201
-    """Run agent ``jipda`` or ``gnn`` over ``scans``; a :class:`seatwin.evaluation.Tracks`."""
-    from seatwin.evaluation import Tracks
-    from seatwin.tracking import JIPDATracker
-    from seatwin.tracking.gnn import GNNTracker
+def run_agent(scans: list[Scan], tuning: TrackerConfig, agent: str) -> Tracks:
+    """Agent ``jipda`` or ``gnn`` over ``scans`` (:func:`seatwin.pipeline.track_scans`)."""
+    from seatwin.pipeline import track_scans
 
-    tracker = JIPDATracker(tuning) if agent == "jipda" else GNNTracker(tuning)
-    table = tracker.run(scans)
-    return Tracks(table.time, table.track_id, table.existence, table.x, table.P, table.confirmed,
-                  scan_times=np.array([s.time for s in scans]))
+    return track_scans(scans, tuning, agent=agent)
 
 
-def truth_of(data: JoyrideData):  # noqa: ANN201
+def truth_of(data: JoyrideData) -> TruthSet:
+    """The target's GNSS ground truth as a :class:`seatwin.evaluation.TruthSet`."""
     from seatwin.evaluation import TruthSet, TruthTrack
 
     tr = TruthTrack(TARGET, data.time, data.target[:, 0], data.target[:, 2], data.target[:, 1], data.target[:, 3], data.source)
     return TruthSet({TARGET: tr}, data.source)
 
 
-def block_bootstrap_ci(values: list[NDArray[np.float64]], n_boot: int, block: int, seed: int = 0, level: float = 0.95) -> tuple[float, float]:
+def block_bootstrap_ci(values: list[NDArray[np.float64]], n_boot: int, block: int, seed: int = 0,
+                       level: float = 0.95) -> tuple[float, float]:
     """Percentile interval of the mean of all ``values`` (one array per seed, in time order)
     under a circular block bootstrap within each array (blocks of ``block`` consecutive values)."""
     from seatwin.rng import frame_rng
@@ -114,33 +92,27 @@ def block_bootstrap_ci(values: list[NDArray[np.float64]], n_boot: int, block: in
     return (float(np.quantile(means, a)), float(np.quantile(means, 1 - a)))
 
 
-def _window_stats(series, t0: float, t1: float) -> dict[str, Any]:  # noqa: ANN001
+def window_stats(series: ComparisonSeries, window: tuple[float, float], seed: int) -> WindowStats:
+    """The comparison ``series`` of one seed restricted to ``window`` (POSIX, inclusive)."""
+    t0, t1 = window
     w = (series.time >= t0 - 1e-9) & (series.time <= t1 + 1e-9)
     common = series.has_real & series.has_synthetic & w
     only_r = series.has_real & ~series.has_synthetic & w
     only_s = series.has_synthetic & ~series.has_real & w
     hed = series.hed[common]
     cd = series.covdiff[common]
-    return {
-        "hed": hed,
-        "hed_printed": series.hed_other[common],
-        "covdiff": cd,
-        "time": series.time[common],
-        "ahed": float(np.mean(hed)) if len(hed) else None,
-        "mean_covdiff": float(np.mean(cd)) if len(cd) else None,
-        "n_common": int(common.sum()),
-        "n_only_real": int(only_r.sum()),
-        "n_only_synthetic": int(only_s.sum()),
-        "only_real_times": series.time[only_r].tolist(),
-        "only_synthetic_times": series.time[only_s].tolist(),
-        "nees_real": series.nees_real[common],
-        "nees_synthetic": series.nees_synthetic[common],
-        "rmse_real": series.rmse_real[common],
-        "rmse_synthetic": series.rmse_synthetic[common],
-    }
+    return WindowStats(
+        hed=hed, hed_printed=series.hed_other[common], covdiff=cd, time=series.time[common],
+        ahed=float(np.mean(hed)) if len(hed) else None, mean_covdiff=float(np.mean(cd)) if len(cd) else None,
+        n_common=int(common.sum()), n_only_real=int(only_r.sum()), n_only_synthetic=int(only_s.sum()),
+        only_real_times=series.time[only_r].tolist(), only_synthetic_times=series.time[only_s].tolist(),
+        nees_real=series.nees_real[common], nees_synthetic=series.nees_synthetic[common],
+        rmse_real=series.rmse_real[common], rmse_synthetic=series.rmse_synthetic[common], seed=seed,
+    )
 
 
-def plot_statistics(data: JoyrideData, plots: list[NDArray[np.float64]], antenna: NDArray[np.float64], idx: NDArray[np.int64], gate_m: float = 60.0) -> dict[str, float]:
+def plot_statistics(data: JoyrideData, plots: list[NDArray[np.float64]], idx: NDArray[np.int64],
+                    gate_m: float = 60.0) -> PlotStatistics:
     """Simple statistics of a recording over scans ``idx``: plots per scan, target detection rate, clutter per scan."""
     n_pl, det, clut = 0, 0, 0
     for k in idx:
@@ -150,24 +122,71 @@ def plot_statistics(data: JoyrideData, plots: list[NDArray[np.float64]], antenna
         det += int((d <= gate_m).any())
         clut += int((d > gate_m).sum())
     n = max(len(idx), 1)
-    return {"plots_per_scan": n_pl / n, "detection_rate": det / n, "clutter_per_scan": clut / n}
+    return PlotStatistics(n_pl / n, det / n, clut / n)
 
 
-def off_target_tracks(tracks, data: JoyrideData, window: tuple[float, float], gate_m: float = 60.0) -> dict[str, float]:  # noqa: ANN001
+def off_target_tracks(tracks: Tracks, data: JoyrideData, window: tuple[float, float], gate_m: float = 60.0) -> OffTarget:
     """Confirmed tracks away from the target (> ``gate_m``) in the window: un-truthed vessels or persistent clutter."""
     t = tracks.time
     m = tracks.confirmed & (t >= window[0] - 1e-9) & (t <= window[1] + 1e-9)
     if not m.any():
-        return {"tracks": 0, "track_instants": 0}
+        return OffTarget(0, 0)
     tn = np.interp(t[m], data.time, data.target[:, 0])
     te = np.interp(t[m], data.time, data.target[:, 2])
     off = np.hypot(tracks.state[m, 0] - tn, tracks.state[m, 2] - te) > gate_m
     ids = tracks.track_id[m][off]
-    return {"tracks": int(len(np.unique(ids))), "track_instants": int(off.sum())}
+    return OffTarget(int(len(np.unique(ids))), int(off.sum()))
 
 
-def evaluate_model(data: JoyrideData, config, opts: FidelityOptions, window: tuple[float, float], real_tracks: dict,  # noqa: ANN001
-                   tuning, scene=None, label: str = "") -> dict[str, Any]:  # noqa: ANN001
+def floor_stats(synthetic: list[Tracks], seed0: int, truth: TruthSet, window: tuple[float, float],
+                tuning: str) -> list[WindowStats]:
+    """The method's floor: the synthetic recordings of seeds s and s+1 (``synthetic[s - seed0]``) compared
+    as if the first were real — the distance that independent noise alone produces."""
+    from seatwin.evaluation import CompareOptions, compare
+
+    return [window_stats(compare(a, b, truth, tuning, CompareOptions()).series[TARGET], window, seed0 + k + 1)
+            for k, (a, b) in enumerate(zip(synthetic, synthetic[1:]))]
+
+
+def _agent_result(runs: list[WindowStats], floor: list[WindowStats], off_synthetic: list[OffTarget], off_real: OffTarget,
+                  opts: FidelityOptions) -> AgentResult:
+    """Pool one agent's seeds: AHED over every common instant, its block-bootstrap interval, the floor."""
+    vals = [r.ahed for r in runs if r.ahed is not None]
+    ci = block_bootstrap_ci([r.hed for r in runs], opts.n_boot, opts.block, seed=opts.seed0)
+    all_hed = np.concatenate([r.hed for r in runs]) if runs else np.empty(0)
+    all_cd = np.concatenate([r.covdiff for r in runs]) if runs else np.empty(0)
+    floor_hed = [f.hed for f in floor]
+    floor_all = np.concatenate(floor_hed) if floor_hed else np.empty(0)
+    return AgentResult(
+        ahed=float(np.mean(all_hed)) if len(all_hed) else None,
+        ahed_ci=ci,
+        ahed_per_seed=vals,
+        ahed_printed=_nanmean([r.hed_printed for r in runs]),
+        ahed_seed_std=float(np.std(vals, ddof=1)) if len(vals) > 1 else 0.0,
+        ahed_seed_range=(float(min(vals)), float(max(vals))) if vals else None,
+        mean_covdiff=float(np.mean(all_cd)) if len(all_cd) else None,
+        off_target_tracks_synthetic=float(np.mean([o.tracks for o in off_synthetic])),
+        off_target_instants_synthetic=float(np.mean([o.track_instants for o in off_synthetic])),
+        off_target_tracks_real=off_real.tracks,
+        off_target_instants_real=off_real.track_instants,
+        floor_ahed=float(np.mean(floor_all)) if len(floor_all) else None,
+        floor_ahed_ci=block_bootstrap_ci(floor_hed, opts.n_boot, opts.block, seed=opts.seed0 + 1) if floor_hed else None,
+        floor_pairs=sum(1 for f in floor if f.ahed is not None),
+        floor_n_common=float(np.mean([len(h) for h in floor_hed])) if floor_hed else 0.0,
+        n_common=float(np.mean([r.n_common for r in runs])),
+        n_only_real=float(np.mean([r.n_only_real for r in runs])),
+        n_only_synthetic=float(np.mean([r.n_only_synthetic for r in runs])),
+        nees_real_mean=_nanmean([r.nees_real for r in runs]),
+        nees_synthetic_mean=_nanmean([r.nees_synthetic for r in runs]),
+        rmse_real_mean=_nanmean([r.rmse_real for r in runs]),
+        rmse_synthetic_mean=_nanmean([r.rmse_synthetic for r in runs]),
+        per_seed=[SeedResult.of(r) for r in runs],
+    )
+
+
+def evaluate_model(data: JoyrideData, config: RadarConfig, opts: FidelityOptions, window: tuple[float, float],
+                   real_tracks: dict[str, Tracks], tuning: TrackerConfig, scene: Scene | None = None,
+                   label: str = "") -> ModelResult:
     """Simulate ``opts.seeds`` synthetic recordings with radar ``config``; AHED per agent in ``window``."""
     from seatwin.evaluation import CompareOptions, compare
     from seatwin.sensors.radar.model import RadarModel
@@ -175,77 +194,32 @@ def evaluate_model(data: JoyrideData, config, opts: FidelityOptions, window: tup
     scene = scene or replica_scene(data)
     truth = truth_of(data)
     idx_w = np.flatnonzero((data.time >= window[0] - 1e-9) & (data.time <= window[1] + 1e-9))
-    out: dict[str, Any] = {"label": label, "agents": {}, "synthetic_statistics": []}
-    per_agent: dict[str, list[dict[str, Any]]] = {a: [] for a in opts.agents}
-    hed_series: dict[str, list] = {a: [] for a in opts.agents}
-    example_plots = None
-    synth_tracks: dict[str, list] = {a: [] for a in opts.agents}
-    out["comparisons"] = {}
+    runs: dict[str, list[WindowStats]] = {a: [] for a in opts.agents}
+    synth_tracks: dict[str, list[Tracks]] = {a: [] for a in opts.agents}
+    off_target: dict[str, list[OffTarget]] = {a: [] for a in opts.agents}
+    result = ModelResult(label, config.model_dump(mode="json", exclude={"fit"}), {}, [])
     for s in range(opts.seeds):
         seed = opts.seed0 + s
         scans = simulate_replica(data, RadarModel(config, seed=seed), scene)
         plots = [sc.positions for sc in scans]
         antenna = np.array([[sc.antenna.north, sc.antenna.east] for sc in scans])
-        if example_plots is None:
-            example_plots = plots
-        out["synthetic_statistics"].append(plot_statistics(data, plots, antenna, idx_w))
+        if result.example_plots is None:
+            result.example_plots = plots
+        result.synthetic_statistics.append(plot_statistics(data, plots, idx_w))
         tscans = tracker_scans(data.time, plots, antenna)
         for agent in opts.agents:
             tr = run_agent(tscans, tuning, agent)
             synth_tracks[agent].append(tr)
             comp = compare(real_tracks[agent], tr, truth, opts.tuning, CompareOptions())
             if s == 0:
-                out["comparisons"][agent] = comp
-            out.setdefault("off_target", {}).setdefault(agent, []).append(off_target_tracks(tr, data, window))
-            st = _window_stats(comp.series[TARGET], *window)
-            st["seed"] = seed
-            per_agent[agent].append(st)
-            hed_series[agent].append((st["time"], st["hed"]))
-    # The method's floor: two synthetic recordings of the same model (seeds s and s+1) compared
-    # as if one were real — the distance that independent noise alone produces.
-    floor: dict[str, list[float]] = {a: [] for a in opts.agents}
-    floor_hed: dict[str, list] = {a: [] for a in opts.agents}
+                result.comparisons[agent] = comp
+            off_target[agent].append(off_target_tracks(tr, data, window))
+            runs[agent].append(window_stats(comp.series[TARGET], window, seed))
     for agent in opts.agents:
-        tl = synth_tracks[agent]
-        for s in range(len(tl) - 1):
-            st = _window_stats(compare(tl[s], tl[s + 1], truth, opts.tuning, CompareOptions()).series[TARGET], *window)
-            floor_hed[agent].append(st["hed"])
-            if st["ahed"] is not None:
-                floor[agent].append(st["ahed"])
-    for agent in opts.agents:
-        runs = per_agent[agent]
-        vals = [r["ahed"] for r in runs if r["ahed"] is not None]
-        ci = block_bootstrap_ci([r["hed"] for r in runs], opts.n_boot, opts.block, seed=opts.seed0)
-        all_hed = np.concatenate([r["hed"] for r in runs]) if runs else np.empty(0)
-        all_cd = np.concatenate([r["covdiff"] for r in runs]) if runs else np.empty(0)
-        out["agents"][agent] = {
-            "ahed": float(np.mean(all_hed)) if len(all_hed) else None,
-            "ahed_ci": list(ci),
-            "ahed_per_seed": vals,
-            "ahed_printed": _nanmean([r["hed_printed"] for r in runs]),
-            "ahed_seed_std": float(np.std(vals, ddof=1)) if len(vals) > 1 else 0.0,
-            "ahed_seed_range": [float(min(vals)), float(max(vals))] if vals else None,
-            "mean_covdiff": float(np.mean(all_cd)) if len(all_cd) else None,
-            "off_target_tracks_synthetic": float(np.mean([o["tracks"] for o in out["off_target"][agent]])),
-            "off_target_instants_synthetic": float(np.mean([o["track_instants"] for o in out["off_target"][agent]])),
-            "off_target_tracks_real": off_target_tracks(real_tracks[agent], data, window)["tracks"],
-            "off_target_instants_real": off_target_tracks(real_tracks[agent], data, window)["track_instants"],
-            "floor_ahed": float(np.mean(np.concatenate(floor_hed[agent]))) if floor_hed[agent] and len(np.concatenate(floor_hed[agent])) else None,
-            "floor_ahed_ci": list(block_bootstrap_ci(floor_hed[agent], opts.n_boot, opts.block, seed=opts.seed0 + 1)) if floor_hed[agent] else None,
-            "floor_pairs": len(floor[agent]),
-            "floor_n_common": float(np.mean([len(h) for h in floor_hed[agent]])) if floor_hed[agent] else 0.0,
-            "n_common": float(np.mean([r["n_common"] for r in runs])),
-            "n_only_real": float(np.mean([r["n_only_real"] for r in runs])),
-            "n_only_synthetic": float(np.mean([r["n_only_synthetic"] for r in runs])),
-            "nees_real_mean": _nanmean([r["nees_real"] for r in runs]),
-            "nees_synthetic_mean": _nanmean([r["nees_synthetic"] for r in runs]),
-            "rmse_real_mean": _nanmean([r["rmse_real"] for r in runs]),
-            "rmse_synthetic_mean": _nanmean([r["rmse_synthetic"] for r in runs]),
-            "per_seed": [{k: v for k, v in r.items() if k in ("seed", "ahed", "n_common", "n_only_real", "n_only_synthetic", "only_real_times", "only_synthetic_times")} for r in runs],
-        }
-    out["hed_series"] = hed_series
-    out["example_plots"] = example_plots
-    return out
+        floor = floor_stats(synth_tracks[agent], opts.seed0, truth, window, opts.tuning)
+        result.agents[agent] = _agent_result(runs[agent], floor, off_target[agent],
+                                             off_target_tracks(real_tracks[agent], data, window), opts)
+    return result
 
 
 def _nanmean(parts: list[NDArray[np.float64]]) -> float | None:
@@ -254,13 +228,14 @@ def _nanmean(parts: list[NDArray[np.float64]]) -> float | None:
     return float(np.mean(x)) if len(x) else None
 
 
-def run_fidelity(path: str, opts: FidelityOptions) -> dict[str, Any]:
-    """The whole method on ``joyride.mat``; returns everything the report and ``fidelity.json`` need."""
+def run_fidelity(path: str, options: FidelityOptions | None = None, **changes: object) -> FidelityResult:
+    """The whole method on ``joyride.mat`` with ``options`` (default :class:`FidelityOptions`, with field ``changes``)."""
     from seatwin.fidelity.joyride import load_joyride
     from seatwin.sensors.radar.config import RadarConfig, load_radar_config
     from seatwin.sensors.radar.fit import fit_radar
     from seatwin.tracking import load_tuning
 
+    opts = validated(FidelityOptions, {**(options or FidelityOptions()).model_dump(), **changes})
     data = load_joyride(path)
     base = load_radar_config(opts.radar) if opts.radar else RadarConfig()
     scene = replica_scene(data)
@@ -272,7 +247,7 @@ def run_fidelity(path: str, opts: FidelityOptions) -> dict[str, Any]:
     else:
         fit_idx = np.arange(n)
         window = (float(data.time[0]), float(data.time[-1]))
-    models: dict[str, Any] = {"default": base}
+    models: dict[str, RadarConfig] = {"default": base}
     fit_report = None
     if opts.fit_on != "none":
         obs = observations(data, base, scene).subset(fit_idx)
@@ -281,74 +256,35 @@ def run_fidelity(path: str, opts: FidelityOptions) -> dict[str, Any]:
         fit_report = fit.report
     tuning = load_tuning(opts.tuning)
     if opts.calibrate_bias:
-        radar_t = tuning.sensor("radar").model_copy(update={"bearing_bias": float(np.radians(models["fitted"].noise.bearing_bias_deg))})
+        bias = float(np.radians(models["fitted"].noise.bearing_bias_deg))
+        radar_t = tuning.sensor("radar").model_copy(update={"bearing_bias": bias})
         tuning = tuning.model_copy(update={"sensors": {**tuning.sensors, "radar": radar_t}})
-    own_h = heading_from_velocity(data.ownship[:, 1], data.ownship[:, 3])
-    antenna = data.ownship[:, [0, 2]] + np.column_stack([
-        base.mount_x_m * np.cos(own_h) - base.mount_y_m * np.sin(own_h),
-        base.mount_x_m * np.sin(own_h) + base.mount_y_m * np.cos(own_h),
-    ])
+    antenna = antenna_positions(data, base)
     real_scans = tracker_scans(data.time, data.plots, antenna)
     real_tracks = {a: run_agent(real_scans, tuning, a) for a in opts.agents}
     idx_w = np.flatnonzero((data.time >= window[0] - 1e-9) & (data.time <= window[1] + 1e-9))
-    result: dict[str, Any] = {
-        "dataset": str(path),
-        "n_scans": n,
-        "fit_on": opts.fit_on,
-        "seeds": opts.seeds,
-        "tuning": opts.tuning + (" (bearing bias calibrated by the fit)" if opts.calibrate_bias else ""),
-        "tracker_bearing_bias_deg": float(np.degrees(tuning.sensor("radar").bearing_bias)),
-        "window": list(window),
-        "n_window_scans": int(len(idx_w)),
-        "real_statistics": plot_statistics(data, data.plots, antenna, idx_w),
-        "n_invalid_plots_dropped": data.n_invalid,
-        "assumptions": {
+    return FidelityResult(
+        dataset=str(path),
+        n_scans=n,
+        fit_on=opts.fit_on,
+        seeds=opts.seeds,
+        seed0=opts.seed0,
+        tuning=opts.tuning + (" (bearing bias calibrated by the fit)" if opts.calibrate_bias else ""),
+        tracker_bearing_bias_deg=float(np.degrees(tuning.sensor("radar").bearing_bias)),
+        window=window,
+        n_window_scans=int(len(idx_w)),
+        real_statistics=plot_statistics(data, data.plots, idx_w),
+        n_invalid_plots_dropped=data.n_invalid,
+        assumptions={
             "heading": "from velocity (the dataset has none); held below 0.5 m/s",
             "target_size_m": list(TARGET_SIZE),
             "scan_posing": f"radar pose_at={base.pose_at!r} ('scan': world posed once per scan at its stamp)",
         },
-    }
-    result["radar_fit"] = fit_report
-    result["models"] = {}
-    for label, cfg in models.items():
-        result["models"][label] = evaluate_model(data, cfg, opts, window, real_tracks, tuning, scene, label)
-        result["models"][label]["radar"] = cfg.model_dump(mode="json", exclude={"fit"})
-    primary = "fitted" if "fitted" in models else "default"
-    result["primary_model"] = primary
-    result["primary_agent"] = opts.agents[0]
-    result["real_tracks"] = real_tracks
-    result["real_plots"] = data.plots
-    result["data"] = data
-    return result
-
-
-def fidelity_json(result: dict[str, Any]) -> dict[str, Any]:
-    """The ``fidelity.json`` content (primary model and agent at top level; every model and agent below)."""
-    prim = result["models"][result["primary_model"]]["agents"][result["primary_agent"]]
-    summary: dict[str, Any] = {
-        "ahed": prim["ahed"],
-        "ahed_ci": prim["ahed_ci"],
-        "n_common": prim["n_common"],
-        "n_only_real": prim["n_only_real"],
-        "n_only_synthetic": prim["n_only_synthetic"],
-        "fit_on": result["fit_on"],
-        "seeds": result["seeds"],
-        "model": result["primary_model"],
-        "agent": result["primary_agent"],
-        "window": result["window"],
-        "tuning": result["tuning"],
-        "tracker_bearing_bias_deg": result.get("tracker_bearing_bias_deg", 0.0),
-        "ahed_seed_std": prim["ahed_seed_std"],
-        "ahed_per_seed": prim["ahed_per_seed"],
-        "real_statistics": result["real_statistics"],
-        "models": {},
-    }
-    for label, m in result["models"].items():
-        summary["models"][label] = {
-            "agents": {a: dict(d) for a, d in m["agents"].items()},
-            "synthetic_statistics_mean": {k: float(np.mean([s[k] for s in m["synthetic_statistics"]])) for k in m["synthetic_statistics"][0]},
-            "radar": m["radar"],
-        }
-    if result.get("radar_fit") is not None:
-        summary["radar_fit"] = result["radar_fit"]
-    return summary
+        radar_fit=fit_report,
+        models={label: evaluate_model(data, cfg, opts, window, real_tracks, tuning, scene, label)
+                for label, cfg in models.items()},
+        primary_model="fitted" if "fitted" in models else "default",
+        primary_agent=opts.agents[0],
+        real_tracks=real_tracks,
+        data=data,
+    )

@@ -6,12 +6,13 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from seatwin.fidelity.method import fidelity_json
+from seatwin.fidelity.results import FidelityResult
 
 
 def _f(x: Any, spec: str = ".3f") -> str:
@@ -26,11 +27,11 @@ def _ci(ci: Any) -> str:
     return f"[{ci[0]:.3f}, {ci[1]:.3f}]"
 
 
-def diagnosis(summary: dict[str, Any]) -> list[str]:
+def diagnosis(result: FidelityResult) -> list[str]:
     """Plain-language findings: what the numbers say drives the remaining distance."""
     out = []
-    prim = summary["models"][summary["model"]]["agents"][summary["agent"]]
-    ahed, floor = prim.get("ahed"), prim.get("floor_ahed")
+    prim = result.primary
+    ahed, floor = prim.ahed, prim.floor_ahed
     if ahed is not None and floor is not None:
         if ahed <= floor + 0.05:
             out.append(
@@ -45,51 +46,45 @@ def diagnosis(summary: dict[str, Any]) -> list[str]:
                 f"AHED {ahed:.3f} is above the floor {floor:.3f} of two synthetic recordings of the same model: "
                 f"{ahed - floor:.3f} of the distance is the model's, the rest is recording-to-recording noise."
             )
-    cd = prim.get("mean_covdiff")
+    cd = prim.mean_covdiff
     if ahed and cd is not None:
         out.append(
             f"Mean COVDIFF {cd:.3f} against AHED {ahed:.3f}: the covariances of the two trackers agree "
             + ("closely; the distance is driven by the difference of the means (the NEES term of (5.30))."
                if cd < 0.5 * ahed else "only partly; covariance differences are a large share of the distance.")
         )
-    n_c, n_r, n_s = prim.get("n_common"), prim.get("n_only_real"), prim.get("n_only_synthetic")
-    if n_c is not None:
+    n_c, n_r, n_s = prim.n_common, prim.n_only_real, prim.n_only_synthetic
+    out.append(
+        f"Per seed, {n_c:.0f} instants have a track in both datasets, {n_r:.0f} only in the real and {n_s:.0f} "
+        "only in the synthetic one: AHED does not see these; "
+        + ("track existence differs often." if (n_r + n_s) > 0.3 * max(n_c + n_r + n_s, 1) else "track existence mostly agrees.")
+    )
+    a, b = prim.off_target_instants_real, prim.off_target_instants_synthetic
+    if a > 1.5 * b + 5:
         out.append(
-            f"Per seed, {n_c:.0f} instants have a track in both datasets, {n_r:.0f} only in the real and {n_s:.0f} "
-            "only in the synthetic one: AHED does not see these; "
-            + ("track existence differs often." if (n_r + n_s) > 0.3 * max(n_c + n_r + n_s, 1) else "track existence mostly agrees.")
+            f"The real tracker keeps {prim.off_target_tracks_real} confirmed track(s) away from the target "
+            f"({a} track-instants; synthetic: {b:.0f}): objects the replica lacks (another vessel, land, "
+            "persistent clutter) — the real plots far from the target are not all Poisson clutter."
         )
-    if prim.get("off_target_instants_real") is not None:
-        a, b = prim["off_target_instants_real"], prim["off_target_instants_synthetic"]
-        if a > 1.5 * b + 5:
-            out.append(
-                f"The real tracker keeps {prim['off_target_tracks_real']} confirmed track(s) away from the target "
-                f"({a} track-instants; synthetic: {b:.0f}): objects the replica lacks (another vessel, land, "
-                "persistent clutter) — the real plots far from the target are not all Poisson clutter."
-            )
-    rs = summary["real_statistics"]
-    ss = summary["models"][summary["model"]]["synthetic_statistics_mean"]
+    rs = result.real_statistics
+    ss = result.models[result.primary_model].synthetic_statistics_mean
     for key, name in (("detection_rate", "target detection rate"), ("clutter_per_scan", "clutter plots per scan")):
-        a, b = rs[key], ss[key]
+        a, b = getattr(rs, key), getattr(ss, key)
         if a > 0 and abs(b - a) / a > 0.25:
             out.append(f"The {name} differs: real {a:.2f}, synthetic {b:.2f} (in the evaluation window).")
-    models = summary["models"]
+    models = result.models
     if len(models) > 1:
-        def frac(d: dict[str, Any]) -> float:
-            tot = d["n_common"] + d["n_only_real"] + d["n_only_synthetic"]
-            return (d["n_only_real"] + d["n_only_synthetic"]) / tot if tot else float("nan")
-
         parts = []
         for label, m in models.items():
-            d = m["agents"][summary["agent"]]
-            parts.append(f"{label}: AHED {_f(d['ahed'])}, floor {_f(d.get('floor_ahed'))}, "
-                         f"only-one-dataset fraction {frac(d):.2f}")
+            d = m.agents[result.primary_agent]
+            parts.append(f"{label}: AHED {_f(d.ahed)}, floor {_f(d.floor_ahed)}, "
+                         f"only-one-dataset fraction {d.only_one_fraction:.2f}")
         out.append("By radar model — " + "; ".join(parts) + ". AHED alone can favour a model whose tracks exist at "
                    "different times than the real ones (it averages over common instants only); read it together "
                    "with the floor and the only-one fraction.")
-    agents = summary["models"][summary["model"]]["agents"]
+    agents = result.models[result.primary_model].agents
     if len(agents) > 1:
-        vals = {k: v["ahed"] for k, v in agents.items() if v["ahed"] is not None}
+        vals = {k: v.ahed for k, v in agents.items() if v.ahed is not None}
         if len(vals) > 1:
             spread = max(vals.values()) - min(vals.values())
             txt = ", ".join(f"{k} {v:.3f}" for k, v in vals.items())
@@ -102,43 +97,47 @@ def diagnosis(summary: dict[str, Any]) -> list[str]:
     return out
 
 
-def render_markdown(summary: dict[str, Any]) -> str:
+def render_markdown(result: FidelityResult) -> str:
+    """``fidelity.md``: the summary a person reads."""
+    prim = result.primary
     lines = ["# seatwin fidelity: joyride, real versus synthetic radar", ""]
     lines += [
-        f"Dataset `{summary.get('dataset', '')}`; tuning `{summary['tuning']}` (tracker radar bearing bias "
-        f"{summary.get('tracker_bearing_bias_deg', 0.0):.2f}°); radar model fitted on: "
-        f"**{summary['fit_on']}**; {summary['seeds']} seed(s); evaluation window "
-        f"{summary['window'][0]:.1f}–{summary['window'][1]:.1f} s POSIX.",
+        f"Dataset `{result.dataset}`; tuning `{result.tuning}` (tracker radar bearing bias "
+        f"{result.tracker_bearing_bias_deg:.2f}°); radar model fitted on: "
+        f"**{result.fit_on}**; {result.seeds} seed(s); evaluation window "
+        f"{result.window[0]:.1f}–{result.window[1]:.1f} s POSIX.",
         "",
-        f"**AHED = {_f(summary['ahed'])}**, 95 % interval {_ci(summary['ahed_ci'])} "
-        f"(model `{summary['model']}`, agent `{summary['agent']}`; spread over seeds ±{_f(summary['ahed_seed_std'])}).",
+        f"**AHED = {_f(prim.ahed)}**, 95 % interval {_ci(prim.ahed_ci)} "
+        f"(model `{result.primary_model}`, agent `{result.primary_agent}`; spread over seeds ±{_f(prim.ahed_seed_std)}).",
         "",
         "## AHED by radar model and agent",
         "",
-        "| model | agent | AHED | 95 % CI | seed std | AHED (printed 5.30) | floor (synt. vs synt.) | mean COVDIFF | common | only real | only synthetic | off-target track-instants real / synt. |",
+        "| model | agent | AHED | 95 % CI | seed std | AHED (printed 5.30) | floor (synt. vs synt.) | mean COVDIFF | common "
+        "| only real | only synthetic | off-target track-instants real / synt. |",
         "|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
-    for label, m in summary["models"].items():
-        for agent, d in m["agents"].items():
+    for label, m in result.models.items():
+        for agent, d in m.agents.items():
             lines.append(
-                f"| {label} | {agent} | {_f(d['ahed'])} | {_ci(d['ahed_ci'])} | {_f(d['ahed_seed_std'])} | "
-                f"{_f(d.get('ahed_printed'))} | {_f(d.get('floor_ahed'))} | {_f(d['mean_covdiff'])} | {_f(d['n_common'], '.1f')} | "
-                f"{_f(d['n_only_real'], '.1f')} | {_f(d['n_only_synthetic'], '.1f')} | "
-                f"{d.get('off_target_instants_real', '–')} / {_f(d.get('off_target_instants_synthetic'), '.1f')} |"
+                f"| {label} | {agent} | {_f(d.ahed)} | {_ci(d.ahed_ci)} | {_f(d.ahed_seed_std)} | "
+                f"{_f(d.ahed_printed)} | {_f(d.floor_ahed)} | {_f(d.mean_covdiff)} | {_f(d.n_common, '.1f')} | "
+                f"{_f(d.n_only_real, '.1f')} | {_f(d.n_only_synthetic, '.1f')} | "
+                f"{d.off_target_instants_real} / {_f(d.off_target_instants_synthetic, '.1f')} |"
             )
     lines += ["", "## Recordings compared (evaluation window)", "",
               "| recording | plots / scan | target detection rate | clutter plots / scan |", "|---|---:|---:|---:|"]
-    rs = summary["real_statistics"]
-    lines.append(f"| real | {rs['plots_per_scan']:.2f} | {rs['detection_rate']:.2f} | {rs['clutter_per_scan']:.2f} |")
-    for label, m in summary["models"].items():
-        s = m["synthetic_statistics_mean"]
-        lines.append(f"| synthetic ({label}) | {s['plots_per_scan']:.2f} | {s['detection_rate']:.2f} | {s['clutter_per_scan']:.2f} |")
-    fit = summary.get("radar_fit")
+    rs = result.real_statistics
+    lines.append(f"| real | {rs.plots_per_scan:.2f} | {rs.detection_rate:.2f} | {rs.clutter_per_scan:.2f} |")
+    for label, m in result.models.items():
+        s = m.synthetic_statistics_mean
+        lines.append(f"| synthetic ({label}) | {s.plots_per_scan:.2f} | {s.detection_rate:.2f} | {s.clutter_per_scan:.2f} |")
+    fit = result.radar_fit
     if fit:
         lines += ["", f"## Radar fit ({fit['n_scans']} scans, bootstrap n = {fit['n_boot']})", "",
                   "| parameter | estimate | std. error | 95 % CI |", "|---|---:|---:|---|"]
         for k, v in fit["estimates"].items():
-            lines.append(f"| {k} | {_f(v['estimate'], '.4g')} | {_f(v['se'], '.3g')} | {_ci(v['ci95']) if v['ci95'][0] is not None else '–'} |")
+            ci = _ci(v["ci95"]) if v["ci95"][0] is not None else "–"
+            lines.append(f"| {k} | {_f(v['estimate'], '.4g')} | {_f(v['se'], '.3g')} | {ci} |")
         lines += [f"\nNote: {n}" for n in fit.get("notes", [])]
         lines += ["", "Detection rate against range (Wilson 95 % interval) and the fitted model:", "",
                   "| range [m] | scans | rate | 95 % CI | model |", "|---|---:|---:|---|---:|"]
@@ -146,11 +145,12 @@ def render_markdown(summary: dict[str, Any]) -> str:
             lines.append(f"| {row['range_m'][0]:.0f}–{row['range_m'][1]:.0f} | {row['scans']} | {row['rate']:.2f} | "
                          f"{_ci(row['wilson95'])} | {row['model']:.2f} |")
     lines += ["", "## What drives the remaining distance", ""]
-    lines += [f"* {d}" for d in diagnosis(summary)]
+    lines += [f"* {d}" for d in diagnosis(result)]
     lines += ["", "## Conventions and assumptions", "",
               "* HED (5.30, standard form), COVDIFF (5.31), AHED (5.34) over the instants where both datasets have a "
               "confirmed track on the target (track-to-truth gate of the evaluation module); AHED's interval: "
-              "circular block bootstrap (blocks of up to 10 consecutive instants, at most a third of a series, pooled over seeds).",
+              "circular block bootstrap (blocks of up to 10 consecutive instants, at most a third of a series, "
+              "pooled over seeds).",
               "* Floor: the same comparison between two synthetic recordings of the same model (seeds s, s+1).",
               "* Headings from velocity (the dataset has none); target box size assumed; world posed once per scan.",
               "* `n_common`, `n_only_real`, `n_only_synthetic` are means over seeds.",
@@ -159,52 +159,32 @@ def render_markdown(summary: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
-def write_fidelity(out_dir: str | Path, result: dict[str, Any], html: bool = True) -> dict[str, Path]:
+def write_fidelity(out_dir: str | Path, result: FidelityResult, html: bool = True) -> dict[str, Path]:
     """Write ``fidelity.json``, ``fidelity.md`` and (``html``) ``index.html`` into ``out_dir``."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    summary = fidelity_json(result)
-    summary["dataset"] = result["dataset"]
     paths = {"json": out / "fidelity.json", "markdown": out / "fidelity.md"}
-    paths["json"].write_text(json.dumps(_clean(summary), indent=2))
-    paths["markdown"].write_text(render_markdown(summary))
+    paths["json"].write_text(json.dumps(result.to_json(), indent=2))
+    paths["markdown"].write_text(render_markdown(result))
     if html:
         paths["html"] = _html(out, result)
     return paths
 
 
-def _html(out: Path, result: dict[str, Any]) -> Path:
+def _html(out: Path, result: FidelityResult) -> Path:
     from seatwin.fidelity.method import truth_of
     from seatwin.report import Clouds, ScenarioResult, write_report
 
-    data = result["data"]
+    data = result.data
     truth = truth_of(data)
     results = []
-    for label, m in result["models"].items():
-        comps = list(m["comparisons"].values())
-        for agent, c in m["comparisons"].items():
-            c.tuning = f"{result['tuning']} ({agent})"
+    for label, m in result.models.items():
+        comps = [replace(c, tuning=f"{result.tuning} ({agent})") for agent, c in m.comparisons.items()]
         clouds = []
-        ex = m.get("example_plots")
-        if ex is not None:
+        if m.example_plots is not None:
             for k in np.linspace(0, len(data) - 1, 3).astype(int):
-                clouds.append(Clouds(float(data.time[k]), data.plots[k], ex[k],
+                clouds.append(Clouds(float(data.time[k]), data.plots[k], m.example_plots[k],
                                      ownship=(float(data.ownship[k, 0]), float(data.ownship[k, 2])),
                                      targets=[("target", float(data.target[k, 0]), float(data.target[k, 2]))]))
-        results.append(ScenarioResult(f"joyride, {label} radar model (seed {result.get('seed0', 0)})", comps, truth, clouds))
+        results.append(ScenarioResult(f"joyride, {label} radar model (seed {result.seed0})", comps, truth, clouds))
     return write_report(out, results, title="seatwin fidelity: joyride real versus synthetic radar")
-
-
-def _clean(x: Any) -> Any:
-    if isinstance(x, dict):
-        return {str(k): _clean(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_clean(v) for v in x]
-    if isinstance(x, np.ndarray):
-        return _clean(x.tolist())
-    if isinstance(x, (np.floating, float)):
-        v = float(x)
-        return v if math.isfinite(v) else None
-    if isinstance(x, np.integer):
-        return int(x)
-    return x

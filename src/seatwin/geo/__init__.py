@@ -29,6 +29,7 @@ from seatwin.geo.frames import (
     rot_y,
     rot_z,
     yaw_matrix,
+    yaw_rotate,
 )
 from seatwin.geo.heading import deg_to_rad_heading, heading_from_antennas, rad_to_deg_heading
 from seatwin.geo.wgs84 import WGS84_A, WGS84_E, WGS84_E2, WGS84_F
@@ -68,4 +69,5 @@ __all__ = [
     "wrap_to_2pi",
     "wrap_to_pi",
     "yaw_matrix",
+    "yaw_rotate",
 ]

@@ -61,6 +61,14 @@ def yaw_matrix(heading: float) -> Matrix:
 rot_z = yaw_matrix
 
 
+def yaw_rotate(heading: ArrayLike, x: ArrayLike, y: ArrayLike) -> tuple[Matrix, Matrix]:
+    """``(x, y)`` turned by ``heading`` [rad] about z, element-wise (one heading per point):
+    the first two rows of ``yaw_matrix(heading) @ (x, y, ·)``, e.g. body (forward, starboard)
+    → world (north, east) offsets."""
+    c, s = np.cos(heading), np.sin(heading)
+    return c * np.asarray(x) - s * np.asarray(y), s * np.asarray(x) + c * np.asarray(y)
+
+
 def euler_zyx(roll: float = 0.0, pitch: float = 0.0, yaw: float = 0.0) -> Matrix:
     """``R_z(yaw) R_y(pitch) R_x(roll)``: turned by yaw, then pitched, then rolled about its own axes."""
     return yaw_matrix(yaw) @ rot_y(pitch) @ rot_x(roll)

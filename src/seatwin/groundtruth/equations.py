@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from seatwin.geo import heading_from_antennas
+from seatwin.geo import heading_from_antennas, wrap_to_pi
 
 __all__ = [
     "antenna_midpoint",
@@ -71,6 +71,4 @@ def velocity_central(
 
 def course_over_ground(v_north: ArrayLike, v_east: ArrayLike) -> NDArray[np.float64]:
     """Course over ground atan2(v_east, v_north) ∈ [−π, π) [rad], clockwise from north."""
-    from seatwin.geo import wrap_to_pi
-
     return np.asarray(wrap_to_pi(np.arctan2(np.asarray(v_east, float), np.asarray(v_north, float))), float)

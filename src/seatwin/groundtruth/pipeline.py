@@ -24,7 +24,7 @@ from seatwin.geo import GeodeticOrigin
 from seatwin.geo.flat_earth import Meridian
 from seatwin.groundtruth.detect import read_antenna_log
 from seatwin.groundtruth.log import AntennaLog
-from seatwin.groundtruth.resample import DEFAULT_MAX_GAP_S, DEFAULT_RATE_HZ, common_clock, resample_log
+from seatwin.groundtruth.resample import DEFAULT_MAX_GAP_S, DEFAULT_RATE_HZ, check_rate, common_clock, resample_log
 from seatwin.groundtruth.vessel import (
     DEFAULT_EPS_THRESHOLD_M,
     DEFAULT_MIN_COG_SPEED,
@@ -81,6 +81,7 @@ def compute_ground_truth(
     dup = sorted({n for n in names if names.count(n) > 1})
     if dup:
         raise ParameterError("vessels", f"vessel names must be unique, repeated: {dup}")
+    check_rate(rate_hz)
     for param, value in (("eps_threshold_m", eps_threshold_m), ("max_gap_s", max_gap_s)):
         if not np.isfinite(value) or value <= 0:
             raise ParameterError(param, f"must be a positive number, got {value!r}")

@@ -15,6 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seatwin.errors import InputError, ParameterError
+from seatwin.geo.angles import wrap_to_180
 from seatwin.groundtruth.log import AntennaLog
 
 DEFAULT_RATE_HZ = 10.0
@@ -35,10 +36,15 @@ class ResampledLog:
     """True where the sample is interpolated across a gap between fixes longer than ``max_gap``."""
 
 
-def common_clock(logs: Sequence[AntennaLog], rate_hz: float = DEFAULT_RATE_HZ) -> NDArray[np.float64]:
-    """Times k / rate (integer k) within the interval every log covers; an :class:`InputError` if none."""
+def check_rate(rate_hz: float) -> None:
+    """A :class:`ParameterError` naming ``rate_hz`` unless it is a positive number of Hz."""
     if not np.isfinite(rate_hz) or rate_hz <= 0:
         raise ParameterError("rate_hz", f"the rate must be a positive number of Hz, got {rate_hz!r}")
+
+
+def common_clock(logs: Sequence[AntennaLog], rate_hz: float = DEFAULT_RATE_HZ) -> NDArray[np.float64]:
+    """Times k / rate (integer k) within the interval every log covers; an :class:`InputError` if none."""
+    check_rate(rate_hz)
     if not logs:
         raise InputError(None, "no antenna logs to resample")
     start = max(log.start for log in logs)
@@ -73,7 +79,7 @@ def resample_log(log: AntennaLog, time: NDArray[np.float64], max_gap: float = DE
         log=log,
         time=np.asarray(time, float),
         lat=np.interp(t, log.time, log.lat),
-        lon=(lon_i + 180.0) % 360.0 - 180.0,
+        lon=np.asarray(wrap_to_180(lon_i), float),
         height=None if log.height is None else np.interp(t, log.time, log.height),
         quality=quality,
         gap=gap,

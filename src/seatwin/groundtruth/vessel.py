@@ -62,9 +62,13 @@ class VesselSpec:
 
     def __post_init__(self) -> None:
         if not self.name or not 1 <= len(self.files) <= 2:
-            raise ParameterError("vessels", f"a vessel needs a name and one or two antenna files, got {self.name!r} with {len(self.files)}")
+            raise ParameterError(
+                "vessels", f"a vessel needs a name and one or two antenna files, got {self.name!r} with {len(self.files)}"
+            )
         if self.baseline_m is not None and not (np.isfinite(self.baseline_m) and self.baseline_m > 0):
-            raise ParameterError("vessels", f"vessel {self.name!r}: baseline must be a positive number of metres, got {self.baseline_m!r}")
+            raise ParameterError(
+                "vessels", f"vessel {self.name!r}: baseline must be a positive number of metres, got {self.baseline_m!r}"
+            )
 
 
 @dataclass

@@ -59,8 +59,10 @@ class RecordingScans:
 
 
 def _ownship(rec: Any) -> OwnshipTrajectory | None:
+    from seatwin.evaluation.truth import recording_truth
+
     try:
-        truth = rec.ground_truth()
+        truth = recording_truth(rec)
     except InputError:
         return None
     own = [v for v in truth.values() if v.ownship]

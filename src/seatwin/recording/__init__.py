@@ -4,7 +4,7 @@ from seatwin.recording.config import FORMATS, TopicConfig, ros_name
 from seatwin.recording.messages import StaticTransform, VesselPose, mount_rotation
 from seatwin.recording.pointcloud import RADAR_LAYOUT, VLP16_LAYOUT, Field, Layout, dtype_from_fields, pack, unpack
 from seatwin.recording.reader import ImageFrame, PointCloud, Recording, VesselTruth, open_bag
-from seatwin.recording.writer import RecordingError, RecordingWriter, open_recording, poses_from_scenario
+from seatwin.recording.writer import RecordingError, RecordingWriter, open_recording
 
 __all__ = [
     "FORMATS",
@@ -26,7 +26,6 @@ __all__ = [
     "open_bag",
     "open_recording",
     "pack",
-    "poses_from_scenario",
     "ros_name",
     "unpack",
 ]

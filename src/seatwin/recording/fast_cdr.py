@@ -1,25 +1,34 @@
-"""Direct serialisation of the ground-truth messages (byte-identical to rosbags' generic serialisers).
+"""Direct serialisation of the messages written at every step (byte-identical to rosbags' generic serialisers).
 
-``geometry_msgs/PoseStamped``, ``nav_msgs/Odometry``, ``sensor_msgs/NavSatFix`` and
-``tf2_msgs/TFMessage`` have a fixed layout once their frame ids are known, so each
+Ground truth — ``geometry_msgs/PoseStamped``, ``nav_msgs/Odometry``, ``sensor_msgs/NavSatFix``
+and ``tf2_msgs/TFMessage`` — has a fixed layout once its frame ids are known, so each
 (message type, frame ids) gets one precompiled :class:`struct.Struct` and a message is one
-``Struct.pack`` call (~1 µs instead of ~50 µs through the typestore).
+``Struct.pack`` call (~1 µs instead of ~50 µs through the typestore). A ``sensor_msgs/PointCloud2``
+of a fixed :class:`~seatwin.recording.pointcloud.Layout` is a precomputed prefix (header, fields,
+sizes), the points — packed straight into the message buffer, no intermediate copy — and
+``is_dense``.
 
 Encodings: rosbag2 — little-endian CDR behind the 4-byte encapsulation header ``00 01 00 00``,
 alignment relative to the end of that header, strings ``uint32`` length incl. NUL + bytes + NUL;
 ROS 1 — little endian, no alignment, strings ``uint32`` length + bytes, ``Header`` begins with a
 ``uint32 seq`` (always 0 here, as :func:`seatwin.recording.messages.header` writes).
 The values are those of the builders in :mod:`seatwin.recording.messages` (same helper functions),
-covariances all zero as there.
+covariances all zero as there. ``tests/recording/test_fast_cdr.py`` compares the bytes.
 """
 
 from __future__ import annotations
 
 import struct
 from collections.abc import Sequence
+from typing import Any
 
-from seatwin.geo import GeodeticOrigin, ned_to_llh_exact
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from seatwin.errors import InputError
+from seatwin.geo import GeodeticOrigin
 from seatwin.recording import messages as M
+from seatwin.recording.pointcloud import Layout, checked_columns, fill
 
 CDR_HEADER = b"\x00\x01\x00\x00"
 
@@ -27,6 +36,7 @@ POSE_STAMPED = "geometry_msgs/msg/PoseStamped"
 ODOMETRY = "nav_msgs/msg/Odometry"
 NAV_SAT_FIX = "sensor_msgs/msg/NavSatFix"
 TF_MESSAGE = "tf2_msgs/msg/TFMessage"
+POINT_CLOUD2 = "sensor_msgs/msg/PointCloud2"
 
 
 class _Layout:
@@ -113,40 +123,155 @@ class GroundTruthEncoder:
 
     def pose_stamped(self, t: float, world_frame: str, v: M.VesselPose) -> bytes:
         """= serialised :func:`messages.pose_stamped`."""
-        sec, nsec = M.split_stamp(t)
-        qx, qy, qz, qw = M.quaternion_yaw(v.heading)
-        return self._struct(("pose", world_frame)).pack(
-            *self._lead, sec, nsec, *self._str(world_frame),
-            float(v.north), float(v.east), float(v.down), qx, qy, qz, qw)
+        return self._pose(M.split_stamp(t), world_frame, v, M.quaternion_yaw(v.heading))
 
     def odometry(self, t: float, world_frame: str, body_frame: str, v: M.VesselPose) -> bytes:
         """= serialised :func:`messages.odometry`."""
-        sec, nsec = M.split_stamp(t)
-        qx, qy, qz, qw = M.quaternion_yaw(v.heading)
-        u, w = M.body_velocity(v)
-        return self._struct(("odom", world_frame, body_frame)).pack(
-            *self._lead, sec, nsec, *self._str(world_frame), *self._str(body_frame),
-            float(v.north), float(v.east), float(v.down), qx, qy, qz, qw,
-            float(u), float(w), 0.0, 0.0, 0.0, float(v.yaw_rate))
+        return self._odometry(M.split_stamp(t), world_frame, body_frame, v, M.quaternion_yaw(v.heading))
 
-    def nav_sat_fix(self, t: float, frame_id: str, v: M.VesselPose, origin: GeodeticOrigin) -> bytes:
-        """= serialised :func:`messages.nav_sat_fix`."""
-        sec, nsec = M.split_stamp(t)
-        lat, lon, alt = ned_to_llh_exact(v.north, v.east, v.down, origin)
-        status, service, cov_type = self._fix_status
-        return self._struct(("fix", frame_id)).pack(
-            *self._lead, sec, nsec, *self._str(frame_id), status, service, float(lat), float(lon), float(alt), cov_type)
+    def nav_sat_fix(self, t: float, frame_id: str, v: M.VesselPose, origin: GeodeticOrigin | None) -> bytes:
+        """= serialised :func:`messages.nav_sat_fix` (the pose's ``llh`` if it has one, else converted about ``origin``)."""
+        return self._fix(M.split_stamp(t), frame_id, v, origin)
 
     def tf_message(self, t: float, transforms: Sequence[tuple[str, str, Sequence[float], Sequence[float]]]) -> bytes:
         """= serialised :func:`messages.tf_message` of :func:`messages.transform_stamped` items, all stamped ``t``;
         ``transforms``: (parent, child, translation xyz, rotation xyzw)."""
-        sec, nsec = M.split_stamp(t)
+        return self._tf(M.split_stamp(t), transforms)
+
+    def step(self, t: float, world_frame: str, vessels: Sequence[tuple[M.VesselPose, str, bool]],
+             origin: GeodeticOrigin | None) -> list[bytes]:
+        """One ground-truth step: per (vessel, body frame, with fix) its PoseStamped, Odometry and, if asked,
+        NavSatFix; then one TFMessage of all vessels — the messages above, sharing the stamp and quaternions."""
+        stamp = M.split_stamp(t)
+        out: list[bytes] = []
+        tfs = []
+        for v, body, fix in vessels:
+            q = M.quaternion_yaw(v.heading)
+            out.append(self._pose(stamp, world_frame, v, q))
+            out.append(self._odometry(stamp, world_frame, body, v, q))
+            if fix:
+                out.append(self._fix(stamp, body, v, origin))
+            tfs.append((world_frame, body, (v.north, v.east, v.down), q))
+        if tfs:
+            out.append(self._tf(stamp, tfs))
+        return out
+
+    def _pose(self, stamp: tuple[int, int], world_frame: str, v: M.VesselPose, q: Sequence[float]) -> bytes:
+        return self._struct(("pose", world_frame)).pack(
+            *self._lead, *stamp, *self._str(world_frame), v.north, v.east, v.down, *q)
+
+    def _odometry(self, stamp: tuple[int, int], world_frame: str, body_frame: str, v: M.VesselPose,
+                  q: Sequence[float]) -> bytes:
+        u, w = M.body_velocity(v)
+        return self._struct(("odom", world_frame, body_frame)).pack(
+            *self._lead, *stamp, *self._str(world_frame), *self._str(body_frame),
+            v.north, v.east, v.down, *q, u, w, 0.0, 0.0, 0.0, v.yaw_rate)
+
+    def _fix(self, stamp: tuple[int, int], frame_id: str, v: M.VesselPose, origin: GeodeticOrigin | None) -> bytes:
+        return self._struct(("fix", frame_id)).pack(
+            *self._lead, *stamp, *self._str(frame_id), *self._fix_status[:2], *M.vessel_llh(v, origin), self._fix_status[2])
+
+    def _tf(self, stamp: tuple[int, int], transforms: Sequence[tuple[str, str, Sequence[float], Sequence[float]]]) -> bytes:
         key: list[str] = ["tf"]
         args: list[object] = [len(transforms)] if self.ros1 else [CDR_HEADER, len(transforms)]
         for parent, child, p, q in transforms:
             key += (parent, child)
             if self.ros1:
                 args.append(0)
-            args += (sec, nsec, *self._str(parent), *self._str(child),
-                     float(p[0]), float(p[1]), float(p[2]), float(q[0]), float(q[1]), float(q[2]), float(q[3]))
+            args += (*stamp, *self._str(parent), *self._str(child), p[0], p[1], p[2], q[0], q[1], q[2], q[3])
         return self._struct(tuple(key)).pack(*args)
+
+
+class _Bytes:
+    """A message's bytes built field by field with the format's alignment; :meth:`put` returns the offset."""
+
+    def __init__(self, ros1: bool) -> None:
+        self.ros1 = ros1
+        self.buf = bytearray() if ros1 else bytearray(CDR_HEADER)
+
+    def put(self, code: str, value: int) -> int:
+        size = struct.calcsize("<" + code)
+        if not self.ros1:
+            self.buf += bytes(-(len(self.buf) - len(CDR_HEADER)) % size)
+        at = len(self.buf)
+        self.buf += struct.pack("<" + code, value)
+        return at
+
+    def string(self, text: str) -> None:
+        b = text.encode()
+        self.put("I", len(b) + (0 if self.ros1 else 1))
+        self.buf += b if self.ros1 else b + b"\0"
+
+
+class PointCloudEncoder:
+    """Serialise ``sensor_msgs/PointCloud2`` of a fixed layout (height 1, little endian) for a bag format.
+
+    = serialised :func:`messages.point_cloud2`; the points are packed into the message itself.
+    """
+
+    def __init__(self, fmt: str, row_step_zero: bool = False) -> None:
+        self.ros1 = fmt == "ros1"
+        self.row_step_zero = row_step_zero
+        self._prefixes: dict[tuple[str, int], tuple[Layout, bytes, int, int, int, int]] = {}
+
+    def _prefix(self, frame_id: str, layout: Layout) -> tuple[Layout, bytes, int, int, int, int]:
+        """(layout, bytes up to the data, offsets of stamp, width, row_step, data length), cached by layout
+        identity (hashing a layout costs more than encoding a small cloud; the entry keeps it alive)."""
+        p = self._prefixes.get((frame_id, id(layout)))
+        if p is None or p[0] is not layout:
+            b = _Bytes(self.ros1)
+            if self.ros1:
+                b.put("I", 0)  # seq
+            stamp = b.put("i", 0)
+            b.put("I", 0)
+            b.string(frame_id)
+            b.put("I", 1)  # height
+            width = b.put("I", 0)
+            b.put("I", len(layout.fields))
+            for f in layout.fields:
+                b.string(f.name)
+                b.put("I", f.offset)
+                b.put("B", f.datatype)
+                b.put("I", f.count)
+            b.put("B", 0)  # is_bigendian
+            b.put("I", layout.point_step)
+            row_step = b.put("I", 0)
+            size = b.put("I", 0)
+            p = self._prefixes[(frame_id, id(layout))] = (layout, bytes(b.buf), stamp, width, row_step, size)
+        return p
+
+    def _message(self, t: float, frame_id: str, layout: Layout, n: int, is_dense: bool) -> tuple[bytearray, NDArray[Any]]:
+        """A zeroed message for ``n`` points, everything but the points filled in, and a view of its points."""
+        _, prefix, at_stamp, at_width, at_row, at_size = self._prefix(frame_id, layout)
+        nbytes = n * layout.point_step
+        msg = bytearray(len(prefix) + nbytes + 1)
+        msg[: len(prefix)] = prefix
+        sec, nsec = M.split_stamp(t)
+        _II.pack_into(msg, at_stamp, sec & 0xFFFFFFFF, nsec)
+        _I.pack_into(msg, at_width, n)
+        _I.pack_into(msg, at_row, 0 if self.row_step_zero else nbytes)
+        _I.pack_into(msg, at_size, nbytes)
+        msg[-1] = 1 if is_dense else 0
+        points = np.frombuffer(msg, dtype=layout.dtype, count=n, offset=len(prefix))
+        return msg, points
+
+    def encode(self, t: float, frame_id: str, layout: Layout, columns: dict[str, ArrayLike | None],
+               is_dense: bool = True) -> bytearray:
+        """Columns of ``layout`` (absent ones 0, checked as :func:`pointcloud.pack` checks them) → the message."""
+        arrays, n = checked_columns(layout, columns)
+        msg, points = self._message(t, frame_id, layout, n, is_dense)
+        fill(points, arrays)
+        return msg
+
+    def encode_packed(self, t: float, frame_id: str, layout: Layout, data: NDArray[np.uint8], is_dense: bool = True) -> bytearray:
+        """Points already packed (:func:`pointcloud.pack`) → the message."""
+        raw = np.ascontiguousarray(data).view(np.uint8).reshape(-1)
+        if raw.size % layout.point_step:
+            raise InputError("point cloud", f"{raw.size} bytes of points are not a whole number of {layout.point_step}-byte points")
+        msg, points = self._message(t, frame_id, layout, raw.size // layout.point_step, is_dense)
+        points.view(np.uint8)[:] = raw[: points.nbytes]
+        return msg
+
+
+_I = struct.Struct("<I")
+_II = struct.Struct("<II")

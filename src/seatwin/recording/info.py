@@ -26,7 +26,7 @@ def bag_info(path: str | os.PathLike[str], scan: bool = True) -> dict[str, Any]:
         spans: dict[str, list[int]] = {}
         counts: dict[str, int] = {}
         if scan:
-            for topic, _, ts, _ in rec._b.messages(None):  # noqa: SLF001 - raw pass, no decoding
+            for topic, _, ts, _ in rec.raw_messages():  # raw pass, no decoding
                 s = spans.setdefault(topic, [ts, ts])
                 s[0], s[1] = min(s[0], ts), max(s[1], ts)
                 counts[topic] = counts.get(topic, 0) + 1

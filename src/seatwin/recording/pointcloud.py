@@ -40,6 +40,11 @@ class Layout:
     def dtype(self) -> np.dtype:
         return dtype_from_fields(self.fields, self.point_step, big_endian=False)
 
+    @cached_property
+    def field_types(self) -> dict[str, np.dtype]:
+        """Field name → its numpy type (the base type of a ``count > 1`` field)."""
+        return {name: self.dtype[name].base for name in self.dtype.names or ()}
+
 
 VLP16_LAYOUT = Layout(
     fields=(
@@ -122,18 +127,18 @@ def pack(layout: Layout, **columns: ArrayLike) -> NDArray[np.uint8]:
 def checked_columns(layout: Layout, columns: dict[str, ArrayLike | None]) -> tuple[dict[str, NDArray[Any]], int]:
     """The given (not None) columns as arrays, and their common length; an :class:`InputError` for
     unknown fields, columns of different lengths, or integers out of their field's range."""
-    dtype = layout.dtype
-    unknown = sorted(set(columns) - set(dtype.names or ()))
+    types = layout.field_types
+    unknown = sorted(k for k in columns if k not in types)
     if unknown:
-        raise InputError("point cloud", f"unknown field(s) {unknown}; layout has {list(dtype.names or ())}")
-    arrays = {k: np.asarray(v) for k, v in columns.items() if v is not None}
-    sizes = {k: a.size for k, a in arrays.items()}
-    if len(set(sizes.values())) > 1:
-        raise InputError("point cloud", f"columns differ in length: {sizes}")
-    n = next(iter(sizes.values()), 0)
+        raise InputError("point cloud", f"unknown field(s) {unknown}; layout has {list(types)}")
+    arrays = {k: v if type(v) is np.ndarray else np.asarray(v) for k, v in columns.items() if v is not None}
+    sizes = {a.size for a in arrays.values()}
+    if len(sizes) > 1:
+        raise InputError("point cloud", f"columns differ in length: { {k: a.size for k, a in arrays.items()} }")
+    n = sizes.pop() if sizes else 0
     for k, a in arrays.items():
-        kind = dtype[k].base
-        if kind.kind in "iu" and n:
+        kind = types[k]
+        if kind.kind in "iu" and n and a.dtype != kind and not np.can_cast(a.dtype, kind, "safe"):
             info = np.iinfo(kind)
             lo, hi = a.min(), a.max()
             if lo < info.min or hi > info.max or (a.dtype.kind == "f" and not np.isfinite(a).all()):

@@ -1,10 +1,12 @@
 """Read recordings: ours (a run directory) and real ones (ROS 1 ``.bag``, rosbag2 SQLite3 or MCAP).
 
-``open_recording_reader(path)`` accepts a run directory (with ``manifest.json``), a rosbag2
-directory, or a ``.mcap`` / ``.db3`` / ``.bag`` file, and gives typed iterators: point clouds of
-any field layout as numpy structured arrays, images (bgr8, rgb8, mono8, CompressedImage), radar
-plots, /tf_static, and ground truth from our topics or from a scenario file beside the bag.
-Bags cut short (SIGKILL, full disk) are read up to their last complete chunk.
+:func:`open_bag` accepts a run directory (with ``manifest.json``), a rosbag2 directory, or a
+``.mcap`` / ``.db3`` / ``.bag`` file, and gives typed iterators: point clouds of any field layout
+as numpy structured arrays, images (bgr8, rgb8, mono8, CompressedImage), radar plots,
+/tf_static, and ground truth from our odometry/pose topics. Bags cut short (SIGKILL, full disk)
+are read up to their last complete chunk. Reading knows no scenarios: for a bag without truth
+topics, :meth:`Recording.scenario_file` names the scenario file beside it and
+:func:`seatwin.evaluation.truth.recording_truth` reads it.
 """
 
 from __future__ import annotations
@@ -96,11 +98,6 @@ class VesselTruth:
     yaw_rate: NDArray[np.float64]
     ownship: bool = False
     source: str = ""
-
-    def to_trajectory(self) -> Any:
-        from seatwin.scenario import Trajectory
-
-        return Trajectory(self.time, self.north, self.east, self.heading, source=self.source)
 
 
 def _find_bag(path: Path) -> tuple[Path, str, Path | None]:
@@ -260,7 +257,8 @@ class Recording:
             yield Message(topic, msgtype, ts, msg)
 
     def raw_messages(self, topics: set[str] | None = None) -> Iterator[B.RawMessage]:
-        """Serialised messages as (topic, msgtype, log time ns, bytes): for byte-level comparisons."""
+        """Serialised messages as (topic, msgtype, log time ns, bytes), in the order of :meth:`messages`,
+        not decoded: for byte-level comparisons and fast scans (``topics``: all when None)."""
         return self._b.messages(topics)
 
     def _typed(self, topic: str | list[str] | None, msgtypes: tuple[str, ...]) -> list[str]:
@@ -329,20 +327,9 @@ class Recording:
         return out
 
     # ---------------------------------------------------------------- ground truth
-    def ground_truth(self, scenario: str | os.PathLike[str] | None = None) -> dict[str, VesselTruth]:
-        """Ground truth per vessel: from ``scenario`` if given, else our odometry (or pose) topics,
-        else a scenario file beside the bag (named in the manifest, or ``scenario.*`` / one ``*.csv``)."""
-        if scenario is not None:
-            return truth_from_scenario_file(Path(scenario))
-        truth = self._truth_from_topics()
-        if truth:
-            return truth
-        beside = self._scenario_beside()
-        if beside is None:
-            raise InputError(self.bag, "no ground truth: no odometry/pose topics and no scenario file beside the bag")
-        return truth_from_scenario_file(beside)
-
-    def _scenario_beside(self) -> Path | None:
+    def scenario_file(self) -> Path | None:
+        """The scenario file beside the bag (named in the manifest, else ``scenario.*`` or a single
+        ``*.csv``), or None. Only located here; :mod:`seatwin.evaluation.truth` reads it."""
         folder = self.run_dir or (self.bag.parent if self.bag.is_file() else self.bag.parent)
         if self.manifest and self.manifest.get("scenario"):
             p = folder / str(self.manifest["scenario"])
@@ -351,7 +338,9 @@ class Recording:
         cands = sorted(folder.glob("scenario.*")) or sorted(folder.glob("*.csv"))
         return cands[0] if len(cands) == 1 else None
 
-    def _truth_from_topics(self) -> dict[str, VesselTruth]:
+    def ground_truth(self) -> dict[str, VesselTruth]:
+        """Ground truth per vessel from our odometry topics (pose topics, velocities differentiated, as a
+        fallback); empty when the bag has neither. The ownship: the manifest's role, or a NavSatFix topic."""
         cfg = self.topic_config
         roles = (self.manifest or {}).get("vessels", {})
         fix_vessels = {cfg.vessel_from_topic("fix", t) for t in self.topics}
@@ -398,27 +387,3 @@ class Recording:
 def open_bag(path: str | os.PathLike[str]) -> Recording:
     """Open any recording for reading (run dir, rosbag2 dir, .mcap, .db3, .bag)."""
     return Recording(path)
-
-
-def truth_from_scenario_file(path: Path) -> dict[str, VesselTruth]:
-    """Ground truth from a scenario file: a Gemini CSV (vessels ``V1``, ``V2``, …; the last is taken as
-    the ownship, as in the Gemini data) or any format ``seatwin.scenario`` can load."""
-    if not path.is_file():
-        raise InputError(path, "scenario file not found")
-    if path.suffix.lower() == ".csv":
-        from seatwin.scenario.gemini_csv import read_gemini_csv
-
-        trajs = read_gemini_csv(path)
-        last = max(trajs) if trajs else None
-        vessels = [(f"V{n}", tr, n == last) for n, tr in trajs.items()]
-    else:
-        from seatwin.scenario.load import load_scenario
-
-        sc = load_scenario(path)
-        vessels = [(v.name, v.trajectory, getattr(v.role, "value", v.role) == "ownship") for v in sc.vessels]
-    out = {}
-    for name, tr, own in vessels:
-        s = tr.state_at(tr.time)
-        out[name] = VesselTruth(name, tr.time.copy(), s.north, s.east, np.zeros_like(s.north), s.heading,
-                                s.v_north, s.v_east, s.yaw_rate, ownship=own, source=str(path))
-    return out

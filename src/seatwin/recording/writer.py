@@ -36,11 +36,19 @@ from seatwin.errors import InputError
 from seatwin.geo import GeodeticOrigin
 from seatwin.recording import messages as M
 from seatwin.recording.config import TopicConfig, check_format
-from seatwin.recording.fast_cdr import NAV_SAT_FIX, ODOMETRY, POSE_STAMPED, TF_MESSAGE, GroundTruthEncoder
+from seatwin.recording.fast_cdr import (
+    NAV_SAT_FIX,
+    ODOMETRY,
+    POINT_CLOUD2,
+    POSE_STAMPED,
+    TF_MESSAGE,
+    GroundTruthEncoder,
+    PointCloudEncoder,
+)
 from seatwin.recording.manifest import MANIFEST_NAME, MANIFEST_VERSION, write_manifest
-from seatwin.recording.pointcloud import RADAR_LAYOUT, VLP16_LAYOUT, Layout, pack
+from seatwin.recording.pointcloud import RADAR_LAYOUT, VLP16_LAYOUT, Layout
+from seatwin.recording.storage import BagStorage, bag_path, open_storage
 
-BAG_STEM = "recording"
 F = TypeVar("F", bound=Callable[..., Any])
 
 
@@ -64,11 +72,6 @@ def _timed(method: F) -> F:
 
 class RecordingError(RuntimeError):
     """Writing the recording failed (e.g. out of disk); the bag so far stays readable, the manifest says incomplete."""
-
-
-def bag_path(run_dir: Path, fmt: str) -> Path:
-    """Where a run directory keeps its bag for ``fmt``."""
-    return Path(run_dir) / (f"{BAG_STEM}.bag" if fmt == "ros1" else BAG_STEM)
 
 
 class RecordingWriter:
@@ -123,12 +126,13 @@ class RecordingWriter:
         self._closed = False
         self._error: str | None = None
         self._serialize = self.store.serialize_ros1 if self.format == "ros1" else self.store.serialize_cdr
+        self._gt = GroundTruthEncoder(self.format)
+        self._clouds = PointCloudEncoder(self.format, row_step_zero)
         self.bag = bag_path(self.run_dir, self.format)
         self.timing = {"total_s": 0.0, "serialize_s": 0.0, "write_s": 0.0}
         """Seconds spent in this writer's calls (``total_s``; recording_share = total_s / wall time),
         of which serialising and handing bytes to the bag storage."""
         self._depth = 0
-        self._gt_encoder: GroundTruthEncoder | None = None
 
         for existing in (self.bag, self.run_dir / MANIFEST_NAME):
             if existing.exists():
@@ -157,27 +161,9 @@ class RecordingWriter:
             "topic_config": self.topics.to_dict(),
             "metadata": metadata or {},
         }
-        self._open_bag()
+        self.storage: BagStorage = open_storage(self.format, self.bag, self.store, fsync=fsync)
+        """The bag file(s): one :class:`~seatwin.recording.storage.BagStorage` class per format."""
         self._write_manifest()
-
-    # ------------------------------------------------------------------ bag backends
-    def _open_bag(self) -> None:
-        if self.format == "ros1":
-            from seatwin.recording.ros1_storage import LeanRos1Writer
-
-            self._w = LeanRos1Writer(self.bag)
-        else:
-            from rosbags.rosbag2 import StoragePlugin
-
-            from seatwin.recording.mcap_storage import LeanWriter
-
-            plugin = StoragePlugin.MCAP if self.format == "mcap" else StoragePlugin.SQLITE3
-            self._w = LeanWriter(self.bag, version=9, storage_plugin=plugin)
-        self._w.open()
-        if self.format == "sqlite3" and not self.fsync:
-            # Commits need not wait for the disk: a killed process loses nothing the kernel holds, and
-            # the on-disk rollback journal (kept) still undoes an interrupted transaction.
-            self._w.storage.conn.execute("PRAGMA synchronous=OFF")
 
     def _connection(self, topic: str, msgtype: str) -> Any:
         conn = self._conns.get(topic)
@@ -185,36 +171,11 @@ class RecordingWriter:
             if self.types[topic] != msgtype:
                 raise InputError(topic, f"topic already carries {self.types[topic]}, cannot write {msgtype}")
             return conn
-        if self.format == "ros1":
-            conn = self._w.add_connection(topic, msgtype, typestore=self.store,
-                                          latching=1 if topic == self.topics.tf_static else None)
-        else:
-            qos = [_latched_qos()] if topic == self.topics.tf_static else ()
-            conn = self._w.add_connection(topic, msgtype, typestore=self.store, offered_qos_profiles=qos)
+        conn = self.storage.add_connection(topic, msgtype, latched=topic == self.topics.tf_static)
         self._conns[topic] = conn
         self.types[topic] = msgtype
         self.counts[topic] = 0
         return conn
-
-    def _flush_storage(self) -> None:
-        """Push everything written so far to the operating system (SIGKILL-safe)."""
-        w = self._w
-        if self.format == "mcap":
-            st = w.storage
-            if st.chunk.msgs:
-                st.close_chunk()
-            st.bio.flush()
-            if self.fsync:
-                os.fsync(st.bio.fileno())
-        elif self.format == "sqlite3":
-            w.storage.conn.commit()
-        else:
-            chunk = w.chunks[-1]
-            if chunk.data.tell() > 0 and any(chunk.connections.values()):
-                w.write_chunk(chunk)
-            w.bio.flush()
-            if self.fsync:
-                os.fsync(w.bio.fileno())
 
     # ------------------------------------------------------------------ generic writing
     @_timed
@@ -236,17 +197,16 @@ class RecordingWriter:
             raise RecordingError(f"{self.bag}: recording is closed")
         t0 = _time.perf_counter()
         try:
-            stamp = M.stamp_ns(t)
-            w, conns, types, counts = self._w, self._conns, self.types, self.counts
-            mcap = self.format == "mcap"
+            conns, types, counts = self._conns, self.types, self.counts
+            batch = []
             for topic, msgtype, data in items:
                 conn = conns.get(topic)
                 if conn is None or types[topic] != msgtype:
                     conn = self._connection(topic, msgtype)
-                w.write(conn, stamp, data)
+                batch.append((conn, data))
+            self.storage.write_many(batch, M.stamp_ns(t))
+            for topic, _, _ in items:
                 counts[topic] += 1
-                if mcap and not w.storage.chunk.msgs:  # rosbags closed a full chunk
-                    w.storage.bio.flush()
             self._t0 = t if self._t0 is None else min(self._t0, t)
             self._t1 = t if self._t1 is None else max(self._t1, t)
             if self._last_flush is None:
@@ -263,7 +223,7 @@ class RecordingWriter:
     def flush(self) -> None:
         """Flush the bag and refresh the manifest (``completed`` stays false until :meth:`close`)."""
         try:
-            self._flush_storage()
+            self.storage.flush()
             # The manifest (a small file rewritten and renamed) is refreshed at most once per
             # ``manifest_wall_s`` of wall time: at high real-time factors rewriting it at every
             # flush cost more than recording the data. It never claims more than was flushed.
@@ -278,7 +238,7 @@ class RecordingWriter:
         self._error = f"{type(exc).__name__}: {exc}"
         self._closed = True
         try:
-            self._w.abort()
+            self.storage.abort()
         except Exception:  # noqa: BLE001 - the bag is being abandoned; its readable prefix stays
             pass
         try:
@@ -295,14 +255,20 @@ class RecordingWriter:
     ) -> None:
         """A lidar sweep as PointCloud2 in the VLP-16 layout (thesis Table 4.2); ``t`` = sweep start,
         ``time`` = seconds since it; pass only returned points (no-return beams omitted: is_dense)."""
-        data = pack(VLP16_LAYOUT, x=x, y=y, z=z, intensity=intensity, ring=ring, time=time)
-        self.write_cloud(topic, frame_id, t, VLP16_LAYOUT, data)
+        columns = {"x": x, "y": y, "z": z, "intensity": intensity, "ring": ring, "time": time}
+        self._write_cloud(topic, t, lambda: self._clouds.encode(t, frame_id, VLP16_LAYOUT, columns))
 
     @_timed
     def write_cloud(self, topic: str, frame_id: str, t: float, layout: Layout, data: np.ndarray, is_dense: bool = True) -> None:
         """A PointCloud2 of any fixed ``layout`` from packed bytes (see :func:`pointcloud.pack`)."""
-        self.write(topic, t, M.point_cloud2(self.store, t, frame_id, layout, data, is_dense=is_dense,
-                                            row_step_zero=self.row_step_zero))
+        self._write_cloud(topic, t, lambda: self._clouds.encode_packed(t, frame_id, layout, data, is_dense))
+
+    def _write_cloud(self, topic: str, t: float, encode: Callable[[], bytearray]) -> None:
+        """Serialise a PointCloud2 directly (:class:`~seatwin.recording.fast_cdr.PointCloudEncoder`) and write it."""
+        t0 = _time.perf_counter()
+        data = encode()
+        self.timing["serialize_s"] += _time.perf_counter() - t0
+        self._write_batch(t, ((topic, POINT_CLOUD2, data),))
 
     @_timed
     def write_radar(
@@ -324,8 +290,8 @@ class RecordingWriter:
             range = np.hypot(dx, dy)
         if bearing is None:
             bearing = np.arctan2(dy if z_down else -dy, dx)
-        data = pack(RADAR_LAYOUT, x=xa, y=ya, z=z, intensity=intensity, range=range, bearing=bearing, time=time)
-        self.write_cloud(topic, frame_id, t, RADAR_LAYOUT, data)
+        columns = {"x": xa, "y": ya, "z": z, "intensity": intensity, "range": range, "bearing": bearing, "time": time}
+        self._write_cloud(topic, t, lambda: self._clouds.encode(t, frame_id, RADAR_LAYOUT, columns))
 
     @_timed
     def write_image(self, topic: str, frame_id: str, t: float, pixels: np.ndarray, encoding: str = "bgr8") -> None:
@@ -343,14 +309,15 @@ class RecordingWriter:
     @_timed
     def write_static_transforms(self, t: float, transforms: Sequence[M.StaticTransform] = ()) -> None:
         """Sensor mounts (and, the first time, the ENU display frame above the NED world frame) on /tf_static."""
-        items = list(transforms)
+        items = [(s.parent, s.child, s.translation, s.rotation) for s in transforms]
         if not self._static_written and self.topics.display_frame:
-            items.insert(0, M.StaticTransform(self.topics.display_frame, self.topics.world_frame, (0.0, 0.0, 0.0),
-                                              M.quaternion_from_matrix(M.R_ENU_NED)))
+            items.insert(0, (self.topics.display_frame, self.topics.world_frame, (0.0, 0.0, 0.0), _enu_ned_rotation()))
         if not items:
             return
-        msgs = [M.transform_stamped(self.store, t, s.parent, s.child, s.translation, s.rotation) for s in items]
-        self.write(self.topics.tf_static, t, M.tf_message(self.store, msgs))
+        t0 = _time.perf_counter()
+        data = self._gt.tf_message(t, items)
+        self.timing["serialize_s"] += _time.perf_counter() - t0
+        self._write_batch(t, ((self.topics.tf_static, TF_MESSAGE, data),))
         self._static_written = True
 
     @_timed
@@ -360,33 +327,31 @@ class RecordingWriter:
         Serialised directly (:mod:`seatwin.recording.fast_cdr`, byte-identical to the typestore path)."""
         if not self._static_written:
             self.write_static_transforms(t)
-        tp = self.topics
-        world = tp.world_frame
-        enc = self._gt_encoder
-        if enc is None:
-            enc = self._gt_encoder = GroundTruthEncoder(self.format)
         t0 = _time.perf_counter()
-        items: list[tuple[str, str, bytes]] = []
-        tfs = []
+        entries, topics = [], []
         for v in vessels:
             names = self._vessel_names.get(v.name)
             if names is None:
-                names = self._vessel_names[v.name] = (
-                    tp.body(v.name), tp.topic("pose", vessel=v.name), tp.topic("odom", vessel=v.name), tp.topic("fix", vessel=v.name))
-                self.vessels[v.name] = "ownship" if v.ownship else "target"
+                names = self._vessel_names[v.name] = self._truth_topics(v)
             body, pose_topic, odom_topic, fix_topic = names
-            items.append((pose_topic, POSE_STAMPED, enc.pose_stamped(t, world, v)))
-            items.append((odom_topic, ODOMETRY, enc.odometry(t, world, body, v)))
-            if v.ownship:
-                if self.origin is not None:
-                    items.append((fix_topic, NAV_SAT_FIX, enc.nav_sat_fix(t, body, v, self.origin)))
-                elif not any("NavSatFix" in n for n in self.notes):
-                    self.notes.append("no geodetic origin given: the ownship's NavSatFix was not recorded")
-            tfs.append((world, body, (v.north, v.east, v.down), M.quaternion_yaw(v.heading)))
-        if tfs:
-            items.append((tp.tf, TF_MESSAGE, enc.tf_message(t, tfs)))
+            fix = v.ownship and (v.llh is not None or self.origin is not None)
+            if v.ownship and not fix and not any("NavSatFix" in n for n in self.notes):
+                self.notes.append("no geodetic origin given: the ownship's NavSatFix was not recorded")
+            entries.append((v, body, fix))
+            topics += (pose_topic, POSE_STAMPED), (odom_topic, ODOMETRY)
+            if fix:
+                topics.append((fix_topic, NAV_SAT_FIX))
+        if entries:
+            topics.append((self.topics.tf, TF_MESSAGE))
+        msgs = self._gt.step(t, self.topics.world_frame, entries, self.origin)
         self.timing["serialize_s"] += _time.perf_counter() - t0
-        self._write_batch(t, items)
+        self._write_batch(t, [(topic, msgtype, data) for (topic, msgtype), data in zip(topics, msgs)])
+
+    def _truth_topics(self, v: M.VesselPose) -> tuple[str, str, str, str]:
+        """(body frame, pose, odometry and fix topics) of a vessel seen for the first time; its role noted."""
+        tp = self.topics
+        self.vessels[v.name] = "ownship" if v.ownship else "target"
+        return tp.body(v.name), tp.topic("pose", vessel=v.name), tp.topic("odom", vessel=v.name), tp.topic("fix", vessel=v.name)
 
     # ------------------------------------------------------------------ manifest and closing
     def _write_manifest(self, completed: bool = False) -> None:
@@ -415,11 +380,11 @@ class RecordingWriter:
         if error:
             self._error = error
         try:
-            self._w.close()
+            self.storage.close()
         except OSError as exc:
             self._error = f"{type(exc).__name__}: {exc}"
             try:
-                self._w.abort()
+                self.storage.abort()
             except Exception:  # noqa: BLE001
                 pass
             completed = False
@@ -446,25 +411,10 @@ def open_recording(run_dir: str | os.PathLike[str], fmt: str = "mcap", **kwargs:
     return RecordingWriter(run_dir, fmt, **kwargs)
 
 
-def poses_from_scenario(scenario: Any, t: float) -> list[M.VesselPose]:
-    """Every vessel's :class:`~seatwin.recording.messages.VesselPose` at ``t`` from a :class:`seatwin.scenario.Scenario`."""
-    out = []
-    for v in scenario.vessels:
-        s = v.trajectory.state_at(t)
-        out.append(M.VesselPose(
-            name=v.name, north=float(s.north), east=float(s.east), heading=float(s.heading),
-            v_north=float(s.v_north), v_east=float(s.v_east), yaw_rate=float(s.yaw_rate),
-            ownship=getattr(v.role, "value", v.role) == "ownship",
-        ))
-    return out
-
-
-def _latched_qos() -> Any:
-    from rosbags.interfaces import Qos, QosDurability, QosHistory, QosLiveliness, QosReliability, QosTime
-
-    zero = QosTime(0, 0)
-    return Qos(QosHistory.KEEP_LAST, 1, QosReliability.RELIABLE, QosDurability.TRANSIENT_LOCAL,
-               zero, zero, QosLiveliness.AUTOMATIC, zero, False)
+@functools.cache
+def _enu_ned_rotation() -> tuple[float, float, float, float]:
+    """The rotation of ``world_ned`` in the ENU display frame, as a quaternion."""
+    return M.quaternion_from_matrix(M.R_ENU_NED)
 
 
 def _utcnow() -> str:

@@ -29,8 +29,10 @@ def cloud_at(path: str | os.PathLike[str], t: float, sensor: str = "lidar") -> C
     from seatwin.perception.from_recording import OwnshipTrajectory
     from seatwin.recording import open_bag
 
+    from seatwin.evaluation.truth import recording_truth
+
     with open_bag(path) as rec:
-        truth = rec.ground_truth()
+        truth = recording_truth(rec)
         own = [v for v in truth.values() if v.ownship]
         if not own:
             raise InputError(path, "no ownship ground truth: the sensor's position in the world is unknown")

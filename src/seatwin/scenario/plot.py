@@ -13,9 +13,9 @@ import numpy as np
 
 from seatwin.errors import InputError
 from seatwin.geo.frames import yaw_matrix
+from seatwin.layout import DEFAULT_LAYOUT, HarbourLayout
 from seatwin.scenario.model import Role, Scenario
 from seatwin.scenario.summary import water_fraction
-from seatwin.layout import DEFAULT_LAYOUT, HarbourLayout
 
 LAND = "#d9d2c3"
 WATER = "#e3f0fa"

@@ -8,8 +8,8 @@ from typing import Any
 
 import numpy as np
 
-from seatwin.scenario.model import Scenario, Trajectory
 from seatwin.layout import DEFAULT_LAYOUT
+from seatwin.scenario.model import Scenario, Trajectory
 
 
 def water_fraction(north: np.ndarray, east: np.ndarray) -> float:

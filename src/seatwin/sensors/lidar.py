@@ -24,6 +24,7 @@ from numpy.typing import NDArray
 
 from seatwin.errors import InputError
 from seatwin.geo.angles import circular_mean, wrap_to_pi
+from seatwin.geo.frames import yaw_rotate
 from seatwin.rng import frame_rng
 from seatwin.scenario.model import Scenario
 from seatwin.sensors.lidar_config import MILLIAMPERE_LIDAR_MOUNT, VLP16, LidarConfig, LidarMount
@@ -360,9 +361,9 @@ def sweep_to_world(lidar: Lidar, sweep: LidarSweep) -> NDArray[np.float64]:
     if lidar.platform is None:
         return p_b
     pose = lidar.scene.pose(lidar.platform, sweep.stamp + sweep.time.astype(np.float64))
-    c, s = np.cos(pose.heading), np.sin(pose.heading)
+    dn, de = yaw_rotate(pose.heading, p_b[:, 0], p_b[:, 1])
     out = np.empty_like(p_b)
-    out[:, 0] = pose.north + c * p_b[:, 0] - s * p_b[:, 1]
-    out[:, 1] = pose.east + s * p_b[:, 0] + c * p_b[:, 1]
+    out[:, 0] = pose.north + dn
+    out[:, 1] = pose.east + de
     out[:, 2] = p_b[:, 2]
     return out

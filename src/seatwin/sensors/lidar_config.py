@@ -1,4 +1,4 @@
-"""Spinning-lidar configuration, the Velodyne VLP-16 presets and the sensor mount.
+"""Spinning-lidar configuration, the Velodyne VLP-16 presets and the sensor mount (settings models, :mod:`seatwin.settings`).
 
 Sensor frame (REP-103): x forward, y left, z up. Beam directions of column k and laser l:
 azimuth φ_k = −2πk/C (the head spins clockwise seen from its top, as Velodyne's do, and a
@@ -8,18 +8,17 @@ sweep starts on the sensor's x axis), elevation ω_l, direction
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
-
 import numpy as np
 from numpy.typing import NDArray
+from pydantic import Field, ValidationInfo, field_validator
 
-from seatwin.errors import InputError
+from seatwin.errors import ParameterError
 from seatwin.geo.frames import mount_matrix
+from seatwin.settings import Settings
 from seatwin.world.vessels import MILLIAMPERE_LIDAR_HEIGHT
 
 
-@dataclass(frozen=True)
-class IntensityModel:
+class IntensityModel(Settings):
     """Return intensity ``scale · ρ · cos θ · (r_ref / max(r, r_ref))^exponent``, clipped to 0–255.
 
     ρ: object reflectivity, θ: incidence angle (ray vs surface normal), r: range. With the
@@ -29,53 +28,56 @@ class IntensityModel:
     fitted to real VLP-16 data: treat intensities as relative.
     """
 
-    scale: float = 255.0
-    reference_range: float = 40.0
-    exponent: float = 2.0
+    scale: float = Field(
+        255.0, ge=0, description="Intensity of a perpendicular return from reflectivity 1 inside the reference range.")
+    reference_range: float = Field(40.0, gt=0, description="Range inside which the intensity does not fall off [m].")
+    exponent: float = Field(
+        2.0, ge=0, description="Exponent of the fall-off with range beyond the reference range (2: the lidar equation).")
 
 
-@dataclass(frozen=True)
-class RangeDissipation:
+class RangeDissipation(Settings):
     """Range-dependent return probability ``1 / (1 + exp((r − half_range) / width))``.
 
     The thesis (5.2.2, Fig. 5.10) found the real VLP-16 returned far fewer points at range
     than its maximum range suggests; this models that fall-off.
     """
 
-    half_range: float = 60.0
-    """Range where half the returns survive [m]."""
-    width: float = 8.0
-    """Steepness of the fall-off [m]."""
+    half_range: float = Field(60.0, gt=0, description="Range where half the returns survive [m].")
+    width: float = Field(8.0, gt=0, description="Steepness of the fall-off [m].")
 
 
-@dataclass(frozen=True)
-class LidarConfig:
-    """A spinning multi-beam lidar."""
+class LidarConfig(Settings):
+    """A spinning multi-beam lidar (build variants with :meth:`with_`)."""
 
-    name: str = "vlp16"
-    elevations_deg: tuple[float, ...] = tuple(float(e) for e in range(-15, 16, 2))
-    """Laser elevations, ascending (ring r = index into this tuple)."""
-    columns: int = 1800
-    """Firings per revolution (azimuth resolution 360°/columns)."""
-    rate_hz: float = 10.0
-    """Revolutions per second; a sweep lasts 1/rate_hz."""
-    max_range: float = 100.0
-    min_range: float = 0.05
-    """Returns nearer than this are discarded (thesis 4.2.3: near plane 5 cm)."""
-    range_accuracy: float = 0.03
-    """± range accuracy of the data sheet [m], taken as 2σ of Gaussian noise."""
-    drop_probability: float = 0.8
-    """Probability that a beam returns nothing (thesis 4.2.2 used 80 %)."""
-    dissipation: RangeDissipation | None = None
-    intensity: IntensityModel = field(default_factory=IntensityModel)
+    name: str = Field("vlp16", description="Name of the sensor model.")
+    elevations_deg: tuple[float, ...] = Field(
+        tuple(float(e) for e in range(-15, 16, 2)), min_length=1,
+        description="Laser elevations, ascending (ring r = index into this tuple) [deg].")
+    columns: int = Field(1800, ge=1, description="Firings per revolution (azimuth resolution 360°/columns).")
+    rate_hz: float = Field(10.0, gt=0, description="Revolutions per second; a sweep lasts 1/rate_hz [Hz].")
+    max_range: float = Field(100.0, gt=0, description="Farthest return [m].")
+    min_range: float = Field(
+        0.05, ge=0, description="Returns nearer than this are discarded (thesis 4.2.3: near plane 5 cm) [m].")
+    range_accuracy: float = Field(
+        0.03, ge=0, description="± range accuracy of the data sheet, taken as 2σ of Gaussian noise [m].")
+    drop_probability: float = Field(
+        0.8, ge=0, le=1, description="Probability that a beam returns nothing (thesis 4.2.2 used 80 %).")
+    dissipation: RangeDissipation | None = Field(None, description="Range-dependent return probability (default: none).")
+    intensity: IntensityModel = Field(default_factory=IntensityModel, description="Return intensity model.")
 
-    def __post_init__(self) -> None:
-        if not self.elevations_deg or list(self.elevations_deg) != sorted(self.elevations_deg):
-            raise InputError(None, f"elevations must be non-empty and ascending, got {self.elevations_deg}", where="lidar.elevations_deg")
-        if self.columns < 1 or self.rate_hz <= 0 or self.max_range <= self.min_range or self.min_range < 0:
-            raise InputError(None, "lidar needs columns ≥ 1, rate_hz > 0 and 0 ≤ min_range < max_range", where=f"lidar {self.name}")
-        if not 0.0 <= self.drop_probability <= 1.0:
-            raise InputError(None, f"drop_probability must be in [0, 1], got {self.drop_probability}", where="lidar.drop_probability")
+    @field_validator("elevations_deg")
+    @classmethod
+    def _ascending(cls, v: tuple[float, ...]) -> tuple[float, ...]:
+        if list(v) != sorted(v):
+            raise ValueError("elevations must be ascending")
+        return v
+
+    @field_validator("min_range")
+    @classmethod
+    def _below_max(cls, v: float, info: ValidationInfo) -> float:
+        if "max_range" in info.data and not v < info.data["max_range"]:
+            raise ValueError(f"must be below max_range {info.data['max_range']}")
+        return v
 
     @property
     def rings(self) -> int:
@@ -103,35 +105,32 @@ class LidarConfig:
         phi = -2.0 * np.pi * np.arange(self.columns) / self.columns
         om = np.radians(np.asarray(self.elevations_deg))
         d = np.stack(
-            [np.cos(om)[None, :] * np.cos(phi)[:, None], np.cos(om)[None, :] * np.sin(phi)[:, None], np.broadcast_to(np.sin(om), (self.columns, len(om)))],
+            [np.cos(om)[None, :] * np.cos(phi)[:, None], np.cos(om)[None, :] * np.sin(phi)[:, None],
+             np.broadcast_to(np.sin(om), (self.columns, len(om)))],
             axis=-1,
         )
         return d.reshape(-1, 3).astype(np.float32)
-
-    def with_(self, **changes: object) -> LidarConfig:
-        return replace(self, **changes)  # type: ignore[arg-type]
 
 
 VLP16 = LidarConfig()
 """Velodyne VLP-16 Puck: 16 lasers −15°…+15° in 2° steps, 10 Hz, 1800 columns (0.2°, the real
 sensor at 10 Hz), 100 m, ±3 cm (thesis 3.2.1, 4.2.3)."""
 
-VLP16_THESIS = replace(VLP16, name="vlp16-thesis", columns=1024)
+VLP16_THESIS = VLP16.with_(name="vlp16-thesis", columns=1024)
 """The VLP-16 as the thesis simulated it: 1024 columns (thesis 4.2.5, PointCloud2 width 16 × 1024)."""
 
 PRESETS: dict[str, LidarConfig] = {"vlp16": VLP16, "vlp16-thesis": VLP16_THESIS}
 
 
-def lidar_preset(name: str) -> LidarConfig:
-    """A preset by name."""
+def lidar_preset(preset: str) -> LidarConfig:
+    """A preset by name (case-insensitive)."""
     try:
-        return PRESETS[name.lower()]
+        return PRESETS[preset.lower()]
     except KeyError:
-        raise InputError(None, f"unknown lidar preset {name!r}; known: {sorted(PRESETS)}", where="lidar") from None
+        raise ParameterError("preset", f"unknown lidar preset {preset!r}; known: {', '.join(sorted(PRESETS))}") from None
 
 
-@dataclass(frozen=True)
-class LidarMount:
+class LidarMount(Settings):
     """Pose of the sensor frame in the carrier's body frame (x fwd, y starboard, z down).
 
     Position ``(x, y, z)`` [m] (z < 0 above the water). Orientation: the sensor upright with
@@ -141,12 +140,12 @@ class LidarMount:
     world NED frame.
     """
 
-    x: float = 0.0
-    y: float = 0.0
-    z: float = -MILLIAMPERE_LIDAR_HEIGHT
-    yaw_deg: float = 0.0
-    pitch_deg: float = 0.0
-    roll_deg: float = 0.0
+    x: float = Field(0.0, description="Forward offset from the carrier's reference point [m].")
+    y: float = Field(0.0, description="Starboard offset [m].")
+    z: float = Field(-MILLIAMPERE_LIDAR_HEIGHT, description="Down offset; negative above the water [m].")
+    yaw_deg: float = Field(0.0, description="Turned clockwise seen from above [deg].")
+    pitch_deg: float = Field(0.0, description="Pitched nose up [deg].")
+    roll_deg: float = Field(0.0, description="Rolled about the sensor's own x axis (180: upside down) [deg].")
 
     @property
     def translation(self) -> NDArray[np.float64]:

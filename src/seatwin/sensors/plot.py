@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from seatwin.geo.frames import yaw_rotate
 from seatwin.sensors.lidar import LidarSweep
 from seatwin.world.scene import Scene
 
@@ -53,10 +54,9 @@ def plot_sweep_top_view(
                     vmax=max(1.0, float(sweep.intensity.max()) if len(sweep) else 1.0), zorder=2)
     for name, model in scene.vessel_models.items():
         p = scene.pose(name, t_mid)
-        c, s = np.cos(float(p.heading)), np.sin(float(p.heading))
         ring = model.outline()
-        n = float(p.north) + c * ring[:, 0] - s * ring[:, 1]
-        e = float(p.east) + s * ring[:, 0] + c * ring[:, 1]
+        dn, de = yaw_rotate(float(p.heading), ring[:, 0], ring[:, 1])
+        n, e = float(p.north) + dn, float(p.east) + de
         colour = "navy" if name == ownship else "deepskyblue"
         ax.plot(e, n, color=colour, lw=1.2, zorder=3)
         ax.annotate(name, (float(p.east), float(p.north)), xytext=(6, 6), textcoords="offset points", color=colour, fontsize=8)

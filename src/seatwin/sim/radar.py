@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from seatwin.errors import ParameterError
 from seatwin.recording import RecordingWriter, StaticTransform, TopicConfig, mount_rotation
 from seatwin.sensors.radar.config import RadarConfig
 from seatwin.sensors.radar.model import RadarModel, RadarScan
@@ -41,13 +42,21 @@ class RadarSensor:
     """``model`` on vessel ``ownship`` of ``scene``: a scan per rotation, or at the given ``times``.
 
     ``times`` (POSIX, ascending) replays a real recording's scan instants (the fidelity replica);
-    ``with_spokes`` also keeps each rotation's raw spokes on the captured :class:`RadarScan`.
+    ``frame_ids`` (with strictly increasing ``times``) numbers those frames for the random draws
+    (default: a frame's position in the loop's window), so a subset of a recording's scans draws
+    as it would in the whole; ``with_spokes`` also keeps each rotation's raw spokes on the
+    captured :class:`RadarScan`.
     """
 
     def __init__(self, model: RadarModel, scene: Any, ownship: str, *, times: Sequence[float] | None = None,
-                 phase_s: float = 0.0, with_spokes: bool | None = None, name: str = "radar"):
+                 frame_ids: Sequence[int] | None = None, phase_s: float = 0.0, with_spokes: bool | None = None,
+                 name: str = "radar"):
         self.model, self.scene, self.ownship, self.name = model, scene, ownship, name
         self.times = None if times is None else np.asarray(times, dtype=np.float64)
+        self.frame_ids = None if frame_ids is None else np.asarray(frame_ids, dtype=np.int64)
+        if self.frame_ids is not None and (self.times is None or self.frame_ids.shape != self.times.shape
+                                           or (np.diff(self.times) <= 0).any()):
+            raise ParameterError("frame_ids", "expected one frame id per time, with strictly increasing times")
         self.rate_hz = 1.0 / float(model.config.rotation_period_s)
         self.phase_s = float(phase_s)
         self.with_spokes = with_spokes
@@ -68,6 +77,8 @@ class RadarSensor:
     def capture(self, t: float, frame: int) -> RadarScan:
         from seatwin.sensors.radar.world import scan_scene
 
+        if self.frame_ids is not None:
+            frame = int(self.frame_ids[np.searchsorted(self.times, t)])
         return scan_scene(self.model, self.scene, self.ownship, frame, t, with_spokes=self.with_spokes)
 
     def record(self, writer: RecordingWriter, t: float, data: RadarScan) -> None:

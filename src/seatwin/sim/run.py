@@ -48,7 +48,7 @@ def scenario_sensors(scenario: Scenario, settings: SimulationSettings) -> list[S
         if settings.dissipation:
             config = config.with_(dissipation=RangeDissipation())
         nominal = MILLIAMPERE_LIDAR_MOUNT
-        mount = dataclasses.replace(nominal, yaw_deg=nominal.yaw_deg + settings.mount_yaw_bias_deg)
+        mount = nominal.with_(yaw_deg=nominal.yaw_deg + settings.mount_yaw_bias_deg)
         lidar = lidar_for_scenario(scenario, scene=scene, config=config, mount=mount, range_model=settings.lidar_mode)
         sensors.append(LidarSensor(lidar, recorded_mount=nominal))
     if "radar" in settings.sensors:

@@ -8,17 +8,17 @@ Lidar, ground truth and radar (:mod:`seatwin.sim.radar`) plug in here; cameras c
 
 from __future__ import annotations
 
-from dataclasses import asdict
 from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
 
-from seatwin.recording import RecordingWriter, StaticTransform, TopicConfig, poses_from_scenario
+from seatwin.recording import RecordingWriter, StaticTransform, TopicConfig, VesselPose
 from seatwin.recording.messages import quaternion_from_matrix
 from seatwin.scenario import Scenario
 from seatwin.sensors.lidar import Lidar
 from seatwin.sensors.lidar_config import LidarMount
+from seatwin.sim.poses import PoseTable, poses_from_scenario
 from seatwin.sim.timing import periodic_times
 
 
@@ -57,10 +57,20 @@ class Periodic:
 
 
 class GroundTruthSensor(Periodic):
-    """Ground truth of every vessel (PoseStamped, Odometry, NavSatFix of the ownship, /tf)."""
+    """Ground truth of every vessel (PoseStamped, Odometry, NavSatFix of the ownship, /tf).
+
+    :meth:`frame_times` also computes every frame's poses at once (:class:`~seatwin.sim.poses.PoseTable`:
+    vectorised, the ownship's WGS-84 position included); a frame outside that table is computed alone.
+    """
 
     def __init__(self, scenario: Scenario, rate_hz: float = 10.0, phase_s: float = 0.0, name: str = "ground_truth"):
         self.scenario, self.rate_hz, self.phase_s, self.name = scenario, float(rate_hz), float(phase_s), name
+        self._table: PoseTable | None = None
+
+    def frame_times(self, t0: float, t1: float) -> NDArray[np.float64]:
+        times = super().frame_times(t0, t1)
+        self._table = PoseTable.from_scenario(self.scenario, times)
+        return times
 
     def static_transforms(self, topics: TopicConfig) -> list[StaticTransform]:
         return []
@@ -68,10 +78,13 @@ class GroundTruthSensor(Periodic):
     def parameters(self) -> dict[str, Any]:
         return {"kind": "ground_truth", "rate_hz": self.rate_hz, "phase_s": self.phase_s}
 
-    def capture(self, t: float, frame: int) -> list:
+    def capture(self, t: float, frame: int) -> list[VesselPose]:
+        table = self._table
+        if table is not None and 0 <= frame < len(table.times) and table.times[frame] == t:
+            return table.poses(frame)
         return poses_from_scenario(self.scenario, t)
 
-    def record(self, writer: RecordingWriter, t: float, data: list) -> None:
+    def record(self, writer: RecordingWriter, t: float, data: list[VesselPose]) -> None:
         writer.write_ground_truth(t, data)
 
 
@@ -99,8 +112,8 @@ class LidarSensor(Periodic):
                                 quaternion_from_matrix(m.rotation()))]
 
     def parameters(self) -> dict[str, Any]:
-        cfg = asdict(self.lidar.config)
-        extra = {} if self.recorded_mount == self.lidar.mount else {"mount_simulated": asdict(self.lidar.mount)}
+        cfg = self.lidar.config.model_dump()
+        extra = {} if self.recorded_mount == self.lidar.mount else {"mount_simulated": self.lidar.mount.model_dump()}
         return {
             "kind": "lidar",
             "rate_hz": self.rate_hz,
@@ -108,7 +121,7 @@ class LidarSensor(Periodic):
             "range_model": self.lidar.range_model_name,
             "seed": self.lidar.seed,
             "carrier": self.carrier,
-            "mount": asdict(self.recorded_mount),
+            "mount": self.recorded_mount.model_dump(),
             "config": cfg,
             **extra,
         }

@@ -2,23 +2,24 @@
 
 Each kind's strength is in the unit of the parameter it changes; ``reference`` is the value
 of the reference model (the VLP-16 preset as is, nominal mount) and every swept strength must
-lie beyond it. Each kind maps a strength to keyword arguments of
-:func:`seatwin.sim.simulate_scenario`:
+lie beyond it. Each kind maps a strength to fields of :class:`seatwin.sim.SimulationSettings`
+(``simulate_scenario(..., **d.settings(strength))``):
 
-* ``noise`` — Gaussian range noise σ [m] (the preset: 0.015 m).
-* ``drop`` — ray-drop probability (the preset: 0.8, thesis 4.2.2).
-* ``dissipation`` — range-dependent return probability off (0) or on (1).
+* ``noise`` — Gaussian range noise σ [m] (``range_noise``; the preset: 0.015 m).
+* ``drop`` — ray-drop probability (``ray_drop``; the preset: 0.8, thesis 4.2.2).
+* ``dissipation`` — range-dependent return probability off (0) or on (1) (``dissipation``).
 * ``mount`` — the lidar simulated turned by this many degrees of yaw more than the nominal
-  mount recorded on ``/tf_static`` (a miscalibrated extrinsic the tracker cannot see).
+  mount recorded on ``/tf_static`` (``mount_yaw_bias_deg``; a miscalibrated extrinsic the
+  tracker cannot see).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from seatwin.errors import InputError
+from seatwin.errors import ParameterError
 from seatwin.sensors.lidar_config import VLP16
 
 
@@ -31,15 +32,22 @@ class Degradation:
     label: str
     reference: float
     default_strengths: tuple[float, ...]
-    kwargs: Callable[[float], dict[str, Any]]
+    fields: Callable[[float], dict[str, Any]]
+    """Strength → :class:`seatwin.sim.SimulationSettings` field values."""
     hi: float = float("inf")
 
+    def strength_problem(self, strength: float) -> str | None:
+        """Why ``strength`` is not a degradation of this kind (None when it is)."""
+        if self.reference < strength <= self.hi:
+            return None
+        return f"{self.kind} strength must be in ({self.reference}, {self.hi}] {self.unit} (beyond the reference model)"
+
     def settings(self, strength: float) -> dict[str, Any]:
-        """Keyword arguments of ``simulate_scenario`` for ``strength`` (validated)."""
-        if not self.reference < strength <= self.hi:
-            raise InputError("--strengths", f"{self.kind} strength must be in ({self.reference}, {self.hi}] "
-                                            f"{self.unit} (beyond the reference model), got {strength}")
-        return self.kwargs(float(strength))
+        """:class:`seatwin.sim.SimulationSettings` field values for ``strength`` (a ``ParameterError`` outside the range)."""
+        problem = self.strength_problem(strength)
+        if problem is not None:
+            raise ParameterError("strengths", f"{problem}, got {strength}")
+        return self.fields(float(strength))
 
 
 DEGRADATIONS: dict[str, Degradation] = {
@@ -58,18 +66,17 @@ DEGRADATIONS: dict[str, Degradation] = {
 
 
 def degradation(kind: str) -> Degradation:
-    """The degradation ``kind`` (``InputError`` naming the known kinds otherwise)."""
+    """The degradation ``kind`` (a ``ParameterError`` naming the known kinds otherwise)."""
     try:
         return DEGRADATIONS[kind]
     except KeyError:
-        raise InputError("--kinds", f"unknown degradation {kind!r}; expected some of {', '.join(DEGRADATIONS)}") from None
+        raise ParameterError("kinds", f"unknown degradation {kind!r}; expected some of {', '.join(DEGRADATIONS)}") from None
 
 
-def parse_kinds(text: str) -> list[Degradation]:
-    """A comma-separated list of kinds, in the given order, without repeats."""
-    names = [p.strip() for p in text.split(",") if p.strip()]
-    if not names:
-        raise InputError("--kinds", f"expected a comma-separated list of {', '.join(DEGRADATIONS)}")
-    if len(set(names)) != len(names):
-        raise InputError("--kinds", f"a kind is repeated in {text!r}")
-    return [degradation(n) for n in names]
+def degradations(kinds: Sequence[str]) -> list[Degradation]:
+    """The degradations ``kinds``, in the given order (none, a repeat or an unknown kind is a ``ParameterError``)."""
+    if not kinds:
+        raise ParameterError("kinds", f"no degradation to sweep; expected some of {', '.join(DEGRADATIONS)}")
+    if len(set(kinds)) != len(kinds):
+        raise ParameterError("kinds", f"a kind is repeated in {', '.join(kinds)}")
+    return [degradation(k) for k in kinds]

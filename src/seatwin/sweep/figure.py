@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from seatwin.sweep.degradations import degradation
 from seatwin.sweep.results import SweepResult, spearman_by_kind, summarise
 
 
@@ -24,11 +25,11 @@ def plot_sweep(result: SweepResult, path: str | Path) -> Path:
     floor = result.floor
     for ax, kind in zip(axes.flat, kinds):
         rows = [r for r in result.kind_rows(kind) if r.ahed is not None]
-        summary = [s for s in summarise(rows) if s["ahed_mean"] is not None]
-        x = [s["strength"] for s in summary]
-        mean = [s["ahed_mean"] for s in summary]
-        lo = [m - s["ahed_min"] for m, s in zip(mean, summary)]
-        hi = [s["ahed_max"] - m for m, s in zip(mean, summary)]
+        summary = [s for s in summarise(rows) if s.ahed_mean is not None]
+        x = [s.strength for s in summary]
+        mean = [s.ahed_mean for s in summary]
+        lo = [m - s.ahed_min for m, s in zip(mean, summary)]
+        hi = [s.ahed_max - m for m, s in zip(mean, summary)]
         if floor:
             ax.axhspan(min(floor), max(floor), color="0.85", zorder=0,
                        label=f"seed-to-seed ({len(floor)} pairs)")
@@ -36,9 +37,9 @@ def plot_sweep(result: SweepResult, path: str | Path) -> Path:
         ax.errorbar(x, mean, yerr=[lo, hi], fmt="o-", capsize=4, color="C0", label="mean, min–max over seeds")
         ax.scatter([r.strength for r in rows], [r.ahed for r in rows], s=10, color="C1", alpha=0.7, zorder=3,
                    label="each seed")
-        r = rho[kind]["rho_points"]
+        r = rho[kind].rho_points
         ax.set_title(f"{kind}: Spearman ρ = {r:.2f}" if r is not None else f"{kind}: ρ undefined")
-        ax.set_xlabel(result.settings["labels"][kind] + " (leftmost: reference)")
+        ax.set_xlabel(degradation(kind).label + " (leftmost: reference)")
         ax.set_ylabel("AHED vs seed-matched reference")
         ax.set_ylim(bottom=0)
         ax.grid(alpha=0.3)
@@ -46,7 +47,7 @@ def plot_sweep(result: SweepResult, path: str | Path) -> Path:
         ax.set_visible(False)
     axes.flat[0].legend(fontsize=7, loc="upper left")
     s = result.settings
-    fig.suptitle(f"Fidelity sweep: {s['scenario']}, {s['duration_s']:g} s, tuning {s['tuning']}, seeds {s['seeds']}",
+    fig.suptitle(f"Fidelity sweep: {s.scenario}, {s.duration:g} s, tuning {s.tuning}, seeds {list(s.seeds)}",
                  fontsize=10)
     fig.tight_layout()
     path = Path(path)

@@ -7,6 +7,9 @@ geometry per pose (see ``docs/architecture/lidar.md``). Rasterising back ends ge
 world-frame triangles of the scene posed at one time from :meth:`Scene.posed_meshes`.
 
 Object ids: static objects first (0 … S−1), then the vessels in scenario order.
+
+The world does not import :mod:`seatwin.scenario`: it takes anything shaped like a
+scenario (:class:`ScenarioLike`, :class:`Track`), so the two packages stay independent.
 """
 
 from __future__ import annotations
@@ -14,17 +17,61 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from seatwin.engine import MeshData, RayCaster, make_caster
-from seatwin.errors import InputError
+from seatwin.errors import InputError, ParameterError
 from seatwin.geo import unwrap, wrap_to_pi, yaw_matrix
-from seatwin.scenario.model import Scenario, Trajectory
 from seatwin.world.harbour import build_harbour
 from seatwin.world.objects import WorldObject
 from seatwin.world.vessels import VesselModel, vessel_model
+
+
+class Track(Protocol):
+    """What a scene needs of a vessel's trajectory (:class:`seatwin.scenario.Trajectory` is one):
+    samples of time [s], north, east [m], heading [rad], and ``state_at`` raising an
+    :class:`~seatwin.errors.InputError` for times outside ``[start, end]``."""
+
+    @property
+    def time(self) -> NDArray[np.float64]: ...
+    @property
+    def north(self) -> NDArray[np.float64]: ...
+    @property
+    def east(self) -> NDArray[np.float64]: ...
+    @property
+    def heading(self) -> NDArray[np.float64]: ...
+    @property
+    def start(self) -> float: ...
+    @property
+    def end(self) -> float: ...
+    def state_at(self, t: ArrayLike) -> Any: ...
+
+
+class VesselLike(Protocol):
+    """A scenario's vessel as a scene reads it (:class:`seatwin.scenario.Vessel`)."""
+
+    @property
+    def name(self) -> str: ...
+    @property
+    def model(self) -> str: ...
+    @property
+    def dimensions(self) -> Any: ...
+    @property
+    def trajectory(self) -> Track: ...
+
+
+class ScenarioLike(Protocol):
+    """A scenario as a scene reads it (:class:`seatwin.scenario.Scenario`)."""
+
+    @property
+    def source(self) -> str: ...
+    @property
+    def environment(self) -> Mapping[str, Any]: ...
+    @property
+    def vessels(self) -> Sequence[VesselLike]: ...
 
 
 @dataclass(frozen=True)
@@ -50,7 +97,7 @@ class Poses:
 class _PoseTrack:
     """Fast pose interpolation of one trajectory (linear, heading unwrapped) — as ``state_at``."""
 
-    def __init__(self, traj: Trajectory):
+    def __init__(self, traj: Track):
         self.traj = traj
         self.time = traj.time
         self.north = traj.north
@@ -70,7 +117,7 @@ class Scene:
     def __init__(
         self,
         static_objects: Sequence[WorldObject],
-        vessels: Mapping[str, tuple[VesselModel, Trajectory]] | None = None,
+        vessels: Mapping[str, tuple[VesselModel, Track]] | None = None,
         backend: str = "embree",
         threads: int | None = None,
     ):
@@ -97,7 +144,11 @@ class Scene:
 
     @classmethod
     def from_scenario(
-        cls, scenario: Scenario, harbour: object | None = None, backend: str = "embree", threads: int | None = None
+        cls,
+        scenario: ScenarioLike,
+        harbour: object | None = None,
+        backend: str = "embree",
+        threads: int | None = None,
     ) -> Scene:
         """The scene of ``scenario``: its harbour (``environment['harbour']`` unless ``harbour`` is
         given) and every vessel with the 3-D model its ``model`` names."""
@@ -113,6 +164,8 @@ class Scene:
         try:
             static = build_harbour(spec)
         except InputError as exc:
+            if harbour is not None:  # the caller's override is at fault, not the scenario
+                raise ParameterError("harbour", exc.detail if exc.source is None else f"{exc.source}: {exc.detail}") from exc
             raise InputError(scenario.source, exc.detail, where=exc.where) from exc
         vessels = {v.name: (vessel_model(v.model, v.dimensions, scenario.source), v.trajectory) for v in scenario.vessels}
         return cls(static, vessels, backend, threads)

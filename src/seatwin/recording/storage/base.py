@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
+from collections.abc import Sequence
 from pathlib import Path
 from typing import ClassVar
 
@@ -41,6 +42,12 @@ class BagStorage(ABC):
     @abstractmethod
     def write(self, connection: Connection, timestamp: int, data: bytes | memoryview) -> None:
         """Write one serialised message with log time ``timestamp`` (ns)."""
+
+    def write_many(self, items: Sequence[tuple[Connection, bytes | memoryview]], timestamp: int) -> None:
+        """Write several serialised messages, all with log time ``timestamp`` (ns), in order; the same
+        bag as :meth:`write` one by one (a format may do it with less overhead)."""
+        for connection, data in items:
+            self.write(connection, timestamp, data)
 
     @abstractmethod
     def flush(self) -> None:

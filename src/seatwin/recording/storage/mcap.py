@@ -7,8 +7,8 @@ records straight into the chunk buffer and the chunk buffer straight into the fi
 records give the same bytes as rosbags' (``tests/recording/test_storage.py``); a message of
 ``DIRECT_BYTES`` or more goes to the file as a chunk of its own.
 
-A flush closes the open chunk and flushes the file (rosbags also closes a chunk at 1 MiB, and
-the file is flushed then too).
+Every closed chunk is flushed to the operating system at once; a flush closes the open chunk
+(rosbags also closes one at 1 MiB).
 """
 
 from __future__ import annotations
@@ -16,6 +16,8 @@ from __future__ import annotations
 import os
 import struct
 from collections import defaultdict
+from collections.abc import Sequence
+from itertools import chain
 from io import BytesIO
 
 from rosbags.interfaces import Connection
@@ -45,21 +47,59 @@ class LeanMcapWriter(McapWriter):
             self._write_own_chunk(connection, timestamp, data)
             return
         chunk = self.chunk
-        if timestamp < self.message_start_time:
-            self.message_start_time = timestamp
-        if timestamp > self.message_end_time:
-            self.message_end_time = timestamp
+        self._times(chunk, timestamp)
         self.channel_stats[connection.id] += 1
-        if timestamp < chunk.message_start_time:
-            chunk.message_start_time = timestamp
-        if timestamp > chunk.message_end_time:
-            chunk.message_end_time = timestamp
         bio = chunk.bio
         chunk.msgs[connection.id].append((timestamp, bio.tell()))
         bio.write(_MSG_HEAD.pack(0x05, 22 + len(data), connection.id, 0, timestamp, timestamp))
         bio.write(data)
         if bio.tell() > CHUNK_BYTES:
             self.close_chunk()
+
+    def write_many(self, items: Sequence[tuple[Connection, bytes | memoryview]], timestamp: int) -> None:
+        """Messages all logged at ``timestamp``: the same bytes as :meth:`write` one by one, the small
+        ones in a row handed to the chunk buffer at once."""
+        direct = self.DIRECT_BYTES if not self.compression else None
+        parts: list[bytes | memoryview] = []
+        chunk = self.chunk
+        pos = chunk.bio.tell()
+        stats = self.channel_stats
+        for conn, data in items:
+            size = len(data)
+            if direct is not None and size >= direct:
+                if parts:
+                    chunk.bio.writelines(parts)
+                    parts = []
+                self._write_own_chunk(conn, timestamp, data)
+                chunk = self.chunk
+                pos = chunk.bio.tell()
+                continue
+            if not parts:
+                self._times(chunk, timestamp)
+            cid = conn.id
+            stats[cid] += 1
+            chunk.msgs[cid].append((timestamp, pos))
+            parts += (_MSG_HEAD.pack(0x05, 22 + size, cid, 0, timestamp, timestamp), data)
+            pos += 31 + size  # the message record's head is 31 bytes
+            if pos > CHUNK_BYTES:  # as :meth:`write`: the chunk closes after the message that fills it
+                chunk.bio.writelines(parts)
+                parts = []
+                self.close_chunk()
+                chunk = self.chunk
+                pos = chunk.bio.tell()
+        if parts:
+            chunk.bio.writelines(parts)
+
+    def _times(self, chunk: PendingChunk, timestamp: int) -> None:
+        """Widen the file's and ``chunk``'s message time spans to ``timestamp``."""
+        if timestamp < self.message_start_time:
+            self.message_start_time = timestamp
+        if timestamp > self.message_end_time:
+            self.message_end_time = timestamp
+        if timestamp < chunk.message_start_time:
+            chunk.message_start_time = timestamp
+        if timestamp > chunk.message_end_time:
+            chunk.message_end_time = timestamp
 
     def _write_own_chunk(self, connection: Connection, timestamp: int, data: bytes | memoryview) -> None:
         chunk = self.chunk
@@ -87,6 +127,7 @@ class LeanMcapWriter(McapWriter):
         rec.write(_U32.pack(10) + _U16.pack(connection.id) + _U64.pack(index_start))
         rec.write(_U64.pack(out.tell() - chunk_end) + _U32.pack(0) + _U64.pack(size) + _U64.pack(size))
         self.chunks.append(rec)
+        out.flush()
 
     def close_chunk(self) -> None:
         chunk = self.chunk
@@ -108,7 +149,7 @@ class LeanMcapWriter(McapWriter):
         offsets: list[tuple[int, int]] = []
         for cid, msgs in chunk.msgs.items():
             offsets.append((cid, out.tell()))
-            body = _U16.pack(cid) + _U32.pack(len(msgs) * 16) + b"".join(_U64.pack(t) + _U64.pack(o) for t, o in msgs)
+            body = _U16.pack(cid) + _U32.pack(len(msgs) * 16) + struct.pack(f"<{2 * len(msgs)}Q", *chain.from_iterable(msgs))
             out.write(b"\x07" + _U64.pack(len(body)) + body)
 
         rec = BytesIO()
@@ -119,6 +160,7 @@ class LeanMcapWriter(McapWriter):
         rec.write(_U64.pack(n_payload) + _U64.pack(size))
         self.chunks.append(rec)
         self.chunk = PendingChunk(2**63 - 1, 0, BytesIO(), defaultdict(list))
+        out.flush()  # a closed chunk reaches the operating system at once (SIGKILL-safe)
 
 
 class McapStorage(Rosbag2Storage):
@@ -127,15 +169,14 @@ class McapStorage(Rosbag2Storage):
     format = "mcap"
     plugin = LeanMcapWriter
 
-    def write(self, connection: Connection, timestamp: int, data: bytes | memoryview) -> None:
-        super().write(connection, timestamp, data)
-        if not self.storage.chunk.msgs:  # a chunk was just closed (full, or a large message's own)
-            self.storage.bio.flush()
+    def _write_records(self, items: Sequence[tuple[Connection, bytes | memoryview]], timestamp: int) -> None:
+        self.writer.write_many(items, timestamp)
 
     def flush(self) -> None:
-        st = self.storage
+        st = self.writer
         if st.chunk.msgs:
             st.close_chunk()
-        st.bio.flush()
+        else:
+            st.bio.flush()
         if self.fsync:
             os.fsync(st.bio.fileno())

@@ -74,6 +74,8 @@ class Ros1Storage(BagStorage):
 
     format = "ros1"
     ros1 = True
+    writer: LeanRos1Writer
+    """rosbags' writer underneath (set by :meth:`open`)."""
 
     def open(self) -> None:
         self.writer = LeanRos1Writer(self.path)

@@ -8,6 +8,7 @@ the YAML texts come from :func:`~seatwin.recording.storage.metadata_yaml.dump_ya
 from __future__ import annotations
 
 import os
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any, ClassVar
 
@@ -45,7 +46,7 @@ class Rosbag2Storage(BagStorage):
     """A rosbag2 directory: ``metadata.yaml`` beside one storage file written by :attr:`plugin`."""
 
     plugin: ClassVar[Any]
-    """A rosbags storage writer class (``McapWriter``, ``Sqlite3Writer`` or a subclass)."""
+    """The rosbags storage writer class (``McapWriter``, ``Sqlite3Writer`` or a subclass); :attr:`writer` is the open one."""
 
     def __init__(self, path: Path, store: Typestore, *, fsync: bool = False) -> None:
         super().__init__(path, store, fsync=fsync)
@@ -54,40 +55,59 @@ class Rosbag2Storage(BagStorage):
         self.min_timestamp = 2**63 - 1
         self.max_timestamp = 0
         self._msgtypes: set[str] = set()
-        self.storage: Any = None
+        self._definitions: dict[str, tuple[MessageDefinition, str]] = {}
+        self.writer: Any = None
 
     def open(self) -> None:
         self.path.mkdir(mode=0o755, parents=True)  # FileExistsError: never overwrite a bag
-        self.storage = self.plugin(self.path, CompressionMode.NONE)
+        self.writer = self.plugin(self.path, CompressionMode.NONE)
+
+    def _definition(self, msgtype: str) -> tuple[MessageDefinition, str]:
+        """(message definition, RIHS01 hash) of ``msgtype``, generated once per type."""
+        d = self._definitions.get(msgtype)
+        if d is None:
+            text, _ = self.store.generate_msgdef(msgtype, ros_version=2)
+            fmt = MessageDefinitionFormat.IDL if text.startswith(_IDL_HEAD) else MessageDefinitionFormat.MSG
+            d = self._definitions[msgtype] = (MessageDefinition(fmt, text), self.store.hash_rihs01(msgtype))
+        return d
 
     def add_connection(self, topic: str, msgtype: str, *, latched: bool = False) -> Connection:
-        msgdef, _ = self.store.generate_msgdef(msgtype, ros_version=2)
-        fmt = MessageDefinitionFormat.IDL if msgdef.startswith(_IDL_HEAD) else MessageDefinitionFormat.MSG
+        msgdef, digest = self._definition(msgtype)
         qos = [LATCHED_QOS] if latched else []
         conn = Connection(
-            id=len(self.connections) + 1, topic=topic, msgtype=msgtype, msgdef=MessageDefinition(fmt, msgdef),
-            digest=self.store.hash_rihs01(msgtype), msgcount=0,
+            id=len(self.connections) + 1, topic=topic, msgtype=msgtype, msgdef=msgdef, digest=digest, msgcount=0,
             ext=ConnectionExtRosbag2(serialization_format="cdr", offered_qos_profiles=qos), owner=self,
         )
         if msgtype not in self._msgtypes:
-            self.storage.add_msgtype(conn)
+            self.writer.add_msgtype(conn)
             self._msgtypes.add(msgtype)
-        self.storage.add_connection(conn, dump_yaml(dump_qos_v9(qos)).strip())
+        self.writer.add_connection(conn, dump_yaml(dump_qos_v9(qos)).strip())
         self.connections.append(conn)
         self.counts[conn.id] = 0
         return conn
 
     def write(self, connection: Connection, timestamp: int, data: bytes | memoryview) -> None:
-        self.storage.write(connection, timestamp, data)
-        self.counts[connection.id] += 1
+        self.write_many(((connection, data),), timestamp)
+
+    def write_many(self, items: Sequence[tuple[Connection, bytes | memoryview]], timestamp: int) -> None:
+        self._write_records(items, timestamp)
+        counts = self.counts
+        for connection, _ in items:
+            counts[connection.id] += 1
         if timestamp < self.min_timestamp:
             self.min_timestamp = timestamp
         if timestamp > self.max_timestamp:
             self.max_timestamp = timestamp
 
+    def _write_records(self, items: Sequence[tuple[Connection, bytes | memoryview]], timestamp: int) -> None:
+        """Hand the messages to the storage plugin."""
+        write = self.writer.write
+        for connection, data in items:
+            write(connection, timestamp, data)
+
     def metadata(self) -> dict[str, Any]:
         """``rosbag2_bagfile_information`` as rosbags' writer builds it."""
-        name = self.storage.path.name
+        name = self.writer.path.name
         duration = max(0, self.max_timestamp - self.min_timestamp)
         start = self.min_timestamp
         count = sum(self.counts.values())
@@ -121,14 +141,14 @@ class Rosbag2Storage(BagStorage):
 
     def close(self) -> None:
         info = self.metadata()
-        self.storage.close(VERSION, dump_yaml(info).strip())
-        self.storage = None
+        self.writer.close(VERSION, dump_yaml(info).strip())
+        self.writer = None
         meta = self.path / "metadata.yaml"
         tmp = meta.with_suffix(".yaml.tmp")
         tmp.write_text(dump_yaml({"rosbag2_bagfile_information": info}), "utf8")
         os.replace(tmp, meta)
 
     def abort(self) -> None:
-        storage, self.storage = self.storage, None
-        if storage is not None:
-            storage.abort()
+        writer, self.writer = self.writer, None
+        if writer is not None:
+            writer.abort()

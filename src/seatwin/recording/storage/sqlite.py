@@ -21,7 +21,7 @@ class Sqlite3Storage(Rosbag2Storage):
     def open(self) -> None:
         super().open()
         if not self.fsync:
-            self.storage.conn.execute("PRAGMA synchronous=OFF")
+            self.writer.conn.execute("PRAGMA synchronous=OFF")
 
     def flush(self) -> None:
-        self.storage.conn.commit()
+        self.writer.conn.commit()

@@ -7,7 +7,7 @@ numerical error, and the depth-buffer lidar range model.
 * :mod:`.table` — Table 4.1 recomputed, with its inconsistencies as warnings.
 * :mod:`.model` — :class:`DepthBufferLidar`: per-beam depth-buffer points.
 * :mod:`.lidar_range` — ``range_model(scene, batch)`` for ``Lidar(range_model="depthbuffer")``.
-* :mod:`.verify` — part of the thesis's claim checked against exact ray casting.
+* :mod:`.verify` — part of the thesis's claim checked against exact ray casting (``seatwin errors --verify``).
 
 The ray-casting parts (``range_model``, ``legacy_range_model``) load lazily, so the pure
 math imports without the engine.

@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from seatwin.sensors.depthbuffer.filter import AzimuthGrid, sensor_angles
 from seatwin.sensors.depthbuffer.model import DepthBufferConfig, DepthBufferLidar
 from seatwin.sensors.lidar_physics import water_limit
 from seatwin.sensors.rangemodel import BeamBatch, BeamRanges, RangeModel, raycast_ranges
@@ -96,15 +97,26 @@ def column_rotations(batch: BeamBatch) -> NDArray[np.float64]:
 _CACHE: dict[tuple, tuple[NDArray[np.float32], DepthBufferLidar]] = {}
 
 
-def sampler_for(config: DepthBufferConfig, lidar_directions: NDArray[np.float32]) -> DepthBufferLidar:
+def lidar_grid(lidar_directions: NDArray[np.float32], rings: int) -> AzimuthGrid | None:
+    """The integer azimuth grid of a lidar's beams (``LidarConfig.sensor_directions``: column
+    ``k`` at ``−2πk/C``), or None when the directions are not laid out that way."""
+    n = len(lidar_directions)
+    if rings < 1 or n % rings:
+        return None
+    grid = AzimuthGrid.lidar(n // rings, rings)
+    return grid if grid.matches(sensor_angles(lidar_directions)[0]) else None
+
+
+def sampler_for(config: DepthBufferConfig, lidar_directions: NDArray[np.float32], rings: int = 1) -> DepthBufferLidar:
     """The precomputed filter for a sensor's full beam set (cached per direction array: the
-    filter is a constant of the sensor; a lidar passes the same array every sweep)."""
-    key = (config, id(lidar_directions), lidar_directions.shape)
+    filter is a constant of the sensor; a lidar passes the same array every sweep). Beams on
+    the lidar's column grid (:func:`lidar_grid`) get their cameras from the column index."""
+    key = (config, id(lidar_directions), lidar_directions.shape, rings)
     hit = _CACHE.get(key)
     if hit is None or hit[0] is not lidar_directions:
         if len(_CACHE) > 16:
             _CACHE.clear()
-        hit = (lidar_directions, DepthBufferLidar(lidar_directions, config))
+        hit = (lidar_directions, DepthBufferLidar(lidar_directions, config, lidar_grid(lidar_directions, rings)))
         _CACHE[key] = hit
     return hit[1]
 
@@ -114,7 +126,7 @@ def depthbuffer_ranges(scene: Scene, batch: BeamBatch, config: DepthBufferConfig
     if len(batch) == 0:
         res0 = raycast_ranges(scene, batch)
         return DepthBufferRanges(**_fields(res0), sensor_points=np.zeros((0, 3), np.float32))
-    db = sampler_for(config, batch.lidar_directions)
+    db = sampler_for(config, batch.lidar_directions, batch.rings)
     beam = np.asarray(batch.beam)
     u = np.einsum("nij,nj->ni", column_rotations(batch), db.sample_directions[beam]).astype(np.float32)
     far = config.far * db.depth_scale[beam]

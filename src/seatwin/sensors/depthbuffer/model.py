@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from seatwin.sensors.depthbuffer.filter import PixelMap, legacy_grid, spherical_filter
+from seatwin.sensors.depthbuffer.filter import AzimuthGrid, PixelMap, legacy_grid, sensor_angles, spherical_filter
 from seatwin.sensors.depthbuffer.projection import (
     DEPTH_24BIT,
     VIEW_TO_SENSOR,
@@ -93,16 +93,21 @@ class DepthBufferHits:
 class DepthBufferLidar:
     """Depth-buffer sampling for fixed beam directions; the filter is precomputed once.
 
-    ``directions``: (N, 3) unit beam directions in the sensor frame (x forward, y left, z up).
+    ``directions``: (N, 3) unit beam directions in the sensor frame (x forward, y left, z up);
+    ``grid``: their integer azimuth indices when they lie on a regular grid (a lidar's columns),
+    which then assign the beams to cameras exactly (see :mod:`.filter`).
     """
 
-    def __init__(self, directions: ArrayLike, config: DepthBufferConfig = DepthBufferConfig()):
+    def __init__(self, directions: ArrayLike, config: DepthBufferConfig = DepthBufferConfig(), grid: AzimuthGrid | None = None):
         self.config = config
         self.camera = config.camera()
         d = np.atleast_2d(np.asarray(directions, dtype=np.float64))
         self.directions = d / np.linalg.norm(d, axis=1, keepdims=True)
+        if grid is not None and not grid.matches(sensor_angles(self.directions)[0]):
+            raise ValueError("the beam directions do not lie on the given azimuth grid")
+        self.grid = grid
         make = spherical_filter if config.use_filter else legacy_grid
-        self.pixels: PixelMap = make(self.directions, self.camera, config.n_c)
+        self.pixels: PixelMap = make(self.directions, self.camera, config.n_c, grid)
         ray_v = pixel_ray(self.pixels.x_d, self.pixels.y_d, self.camera)  # z = −1 per unit depth
         self.depth_scale = np.linalg.norm(ray_v, axis=1)
         """Range per unit depth along each sampled pixel ray."""

@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from seatwin.sensors.depthbuffer.errors import camera_count_gain, error, error_components
-from seatwin.sensors.depthbuffer.filter import grid_directions, spherical_filter
+from seatwin.sensors.depthbuffer.filter import grid_columns, grid_directions, spherical_filter
 from seatwin.sensors.depthbuffer.projection import DepthCamera, camera_hfov, camera_vfov, camera_width
 from seatwin.sensors.depthbuffer.table import TableRow, lidar_equation_row, lidar_row, rgb_row
 
@@ -28,7 +28,7 @@ def filter_mask(n_sw: int = 256, n_sh: int = 16, n_c: int = 4, n_ch: int = 64, v
     """The mask ``M`` of Fig. 4.6 (one camera): the thesis's beam grid (4.12) through 4.18."""
     hfov = camera_hfov(n_c)
     cam = DepthCamera(round(camera_width(n_ch, vfov_s, hfov)), n_ch, camera_vfov(vfov_s, hfov), 0.05, 100.0)
-    return spherical_filter(grid_directions(n_sw, n_sh, n_c, vfov_s), cam, n_c).mask(0)
+    return spherical_filter(grid_directions(n_sw, n_sh, n_c, vfov_s), cam, n_c, grid_columns(n_sw, n_sh, n_c)).mask(0)
 
 
 def fig_filter_mask(path: Path, n_sw: int = 256, n_sh: int = 16, n_c: int = 4, n_ch: int = 64) -> Path:

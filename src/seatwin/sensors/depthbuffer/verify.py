@@ -21,11 +21,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
 
 from seatwin.sensors.depthbuffer.errors import c1, c2, max_error
+from seatwin.sensors.depthbuffer.filter import AzimuthGrid
 from seatwin.sensors.depthbuffer.model import DepthBufferConfig, DepthBufferLidar
 
 DEFAULT_TARGETS: tuple[tuple[float, float, float, str], ...] = (
@@ -133,11 +135,13 @@ def compare_mode(
     rotation: NDArray[np.float64],
     config: DepthBufferConfig,
     edge_normal_deg: float = 30.0,
+    grid: AzimuthGrid | None = None,
 ) -> ModeResult:
-    """Compare depth-buffer points with exact beam points for one configuration."""
+    """Compare depth-buffer points with exact beam points for one configuration (``grid``: the
+    beams' integer azimuth grid, see :class:`DepthBufferLidar`)."""
     from seatwin.sensors.lidar_physics import water_limit
 
-    db = DepthBufferLidar(directions, config)
+    db = DepthBufferLidar(directions, config, grid)
     n = len(db)
     o = np.broadcast_to(origin, (n, 3))
     beam_w = db.directions @ rotation.T
@@ -191,10 +195,11 @@ def run_verification(
     caster = make_caster(scene.posed_meshes(t))  # type: ignore[attr-defined]
     mount = LidarMount(z=-SENSOR_HEIGHT)
     dirs = VLP16.with_(columns=columns).sensor_directions().astype(np.float64)
+    grid = AzimuthGrid.lidar(columns, VLP16.rings)
     out = {}
     for use_filter in (True, False):
         cfg = DepthBufferConfig(**{**config.__dict__, "use_filter": use_filter})
-        res = compare_mode(caster, dirs, mount.translation, mount.rotation(), cfg)
+        res = compare_mode(caster, dirs, mount.translation, mount.rotation(), cfg, grid=grid)
         out[res.name] = res
     return out
 
@@ -212,34 +217,26 @@ def ground_rings(n_c: int = 4, height: float = 3.0, columns: int = 1800, far: fl
     caster = make_caster([plane])
     mount = LidarMount(z=-height)
     dirs = VLP16.with_(columns=columns).sensor_directions().astype(np.float64)
+    grid = AzimuthGrid.lidar(columns, VLP16.rings)
     out = {}
     for use_filter in (True, False):
-        db = DepthBufferLidar(dirs, DepthBufferConfig(n_c=n_c, far=far, use_filter=use_filter))
+        db = DepthBufferLidar(dirs, DepthBufferConfig(n_c=n_c, far=far, use_filter=use_filter), grid)
         h = db.cast(caster, mount.translation, mount.rotation())
         out["filter" if use_filter else "legacy"] = h.points[h.hit]
     return out
 
 
-def main(argv: list[str] | None = None) -> int:
-    """``python -m seatwin.sensors.depthbuffer.verify [--plot PNG]``: the part-5 numbers as JSON."""
-    import argparse
-    import json
-    from pathlib import Path
+def verification_report(columns: int = 1800, plot: str | Path | None = None) -> dict[str, dict]:
+    """The part-5 numbers per mode (``filter``, ``legacy``): :meth:`ModeResult.summary` plus the
+    distances in 10 m range bins; with ``plot``, also the verification figure (PNG) there.
 
-    ap = argparse.ArgumentParser(description="Depth-buffer points vs exact beams on the default harbour (thesis 4.11, 4.24, Fig. 4.7).")
-    ap.add_argument("--columns", type=int, default=1800, help="VLP-16 columns per revolution")
-    ap.add_argument("--plot", type=Path, default=None, help="write the verification figure (PNG) here")
-    args = ap.parse_args(argv)
-    res = run_verification(columns=args.columns)
+    ``seatwin errors --verify`` prints this as JSON.
+    """
+    res = run_verification(columns=columns)
     bins = np.arange(0.0, 101.0, 10.0)
     out = {name: {**r.summary(), "bins_m": bins.tolist(), "binned": r.binned(bins)} for name, r in res.items()}
-    if args.plot is not None:
+    if plot is not None:
         from seatwin.sensors.depthbuffer.plots import fig_verification
 
-        fig_verification(args.plot, res, ground_rings())
-    print(json.dumps(out))
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
+        fig_verification(Path(plot), res, ground_rings())
+    return out
