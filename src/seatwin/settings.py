@@ -1,8 +1,8 @@
 """One configuration style: pydantic models with a description per field, validated into one clear error.
 
-:func:`validated` builds a settings model from keyword values (a library call) or from a
-file's mapping; a bad value becomes a :class:`ParameterError` naming the field (library
-calls: the CLI shows the flag) or an :class:`InputError` naming the file and field.
+A :class:`Settings` model built with a bad value raises :class:`ParameterError` naming the field
+(library calls: the CLI shows the flag); :func:`validated` builds one from a mapping and, for a
+file's mapping, raises an :class:`InputError` naming the file and field instead.
 """
 
 from __future__ import annotations
@@ -17,10 +17,33 @@ from seatwin.errors import InputError, ParameterError
 M = TypeVar("M", bound=BaseModel)
 
 
+def parameter_error(exc: ValidationError, model: str) -> ParameterError:
+    """pydantic's first error as one :class:`ParameterError` naming the (top-level) field."""
+    err = exc.errors()[0]
+    original = (err.get("ctx") or {}).get("error")
+    loc = [str(p) for p in err["loc"]]
+    if isinstance(original, ParameterError):  # a validator or a nested model that already named its parameter
+        if not loc:
+            return original
+        return ParameterError(loc[0], f"{'.'.join([*loc[1:], original.param])}: {original.detail}")
+    msg = err["msg"].removeprefix("Value error, ")
+    if "input" in err and err["type"] != "missing":
+        msg = f"{msg}, got {err['input']!r}"
+    if len(loc) > 1:
+        msg = f"{'.'.join(loc[1:])}: {msg}"
+    return ParameterError(loc[0] if loc else model, msg)
+
+
 class Settings(BaseModel):
     """Base of every settings model: unknown fields are errors, instances are immutable."""
 
     model_config = ConfigDict(extra="forbid", frozen=True)
+
+    def __init__(self, **data: Any) -> None:
+        try:
+            super().__init__(**data)
+        except ValidationError as exc:
+            raise parameter_error(exc, type(self).__name__) from None
 
     def with_(self: M, **changes: Any) -> M:
         """A validated copy with ``changes``."""
@@ -30,14 +53,11 @@ class Settings(BaseModel):
 def validated(model: type[M], values: dict[str, Any], source: str | PathLike[str] | None = None) -> M:
     """``model(**values)``, or one :class:`ParameterError` (``source`` None) / :class:`InputError` naming the field."""
     try:
-        return model.model_validate(values)
-    except ValidationError as exc:
-        err = exc.errors()[0]
-        loc = [str(p) for p in err["loc"]]
-        field = loc[0] if loc else model.__name__
-        message = f"{err['msg']}, got {err['input']!r}" if "input" in err and err["type"] != "missing" else err["msg"]
-        if len(loc) > 1:
-            message = f"{'.'.join(loc[1:])}: {message}"
+        try:
+            return model.model_validate(values)
+        except ValidationError as exc:
+            raise parameter_error(exc, model.__name__) from None
+    except ParameterError as exc:
         if source is None:
-            raise ParameterError(field, message) from None
-        raise InputError(source, message, where=field) from None
+            raise
+        raise InputError(source, exc.detail, where=exc.param) from None

@@ -88,6 +88,10 @@ def test_display_frame_rotation_maps_ned_to_enu() -> None:
     q = mount_rotation("frd")
     assert q == pytest.approx((0, 0, 0, 1))
     np.testing.assert_allclose(R_ENU_NED @ [1.0, 2.0, 3.0], [2.0, 1.0, -3.0])
+    from seatwin.recording.messages import quaternion_from_matrix
+    from seatwin.recording.writer import ENU_NED_ROTATION
+
+    assert ENU_NED_ROTATION == quaternion_from_matrix(R_ENU_NED)  # written out, the same bytes on /tf_static
     # a lidar (FLU) looking 90° to starboard: its x axis is the body's y (starboard) axis
     r = Rotation.from_quat(mount_rotation("flu", yaw=math.pi / 2)).as_matrix()
     np.testing.assert_allclose(r @ [1, 0, 0], [0, 1, 0], atol=1e-12)

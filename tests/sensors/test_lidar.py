@@ -63,6 +63,25 @@ def test_vlp16_presets() -> None:
     np.testing.assert_allclose(VLP16.column_offsets()[[0, 900]], [0.0, 0.05])
 
 
+@pytest.mark.parametrize(("changes", "param"), [
+    ({"columns": 0}, "columns"), ({"elevations_deg": ()}, "elevations_deg"), ({"elevations_deg": (1.0, -1.0)}, "elevations_deg"),
+    ({"rate_hz": 0.0}, "rate_hz"), ({"min_range": 200.0}, "min_range"), ({"drop_probability": 1.5}, "drop_probability"),
+    ({"dissipation": {"half_range": -1.0}}, "dissipation"), ({"colour": "red"}, "colour"),
+])
+def test_lidar_config_names_the_bad_field(changes, param) -> None:
+    from seatwin.errors import ParameterError
+
+    with pytest.raises(ParameterError) as exc:
+        VLP16.with_(**changes)
+    assert exc.value.param == param
+    with pytest.raises(ParameterError) as exc:
+        lidar_preset("hdl64")
+    assert exc.value.param == "preset"
+    for model in (VLP16, VLP16.intensity, RangeDissipation(), MILLIAMPERE_LIDAR_MOUNT):  # one settings style
+        assert all(f.description for f in type(model).model_fields.values())
+    assert MILLIAMPERE_LIDAR_MOUNT.with_(yaw_deg=0.0) == LidarMount(z=MILLIAMPERE_LIDAR_MOUNT.z, roll_deg=180.0)
+
+
 def test_milliampere_mount_is_upside_down_and_turned_573_deg_to_starboard() -> None:
     r = MILLIAMPERE_LIDAR_MOUNT.rotation()
     a = np.radians(57.3)

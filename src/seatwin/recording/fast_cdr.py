@@ -92,6 +92,8 @@ class GroundTruthEncoder:
         self._lead: tuple[object, ...] = (0,) if self.ros1 else (CDR_HEADER,)  # ROS 1 seq | CDR header
         self._structs: dict[tuple[str, ...], struct.Struct] = {}
         self._strings: dict[str, tuple[int, bytes]] = {}
+        self._middles: dict[tuple[str, ...], bytes] = {}
+        self._lead_bytes = bytes(4) if self.ros1 else CDR_HEADER  # ROS 1 seq 0 | CDR header
         T = M.typestore(fmt).types
         nss = T["sensor_msgs/msg/NavSatStatus"]
         self._fix_status = (nss.STATUS_FIX, nss.SERVICE_GPS, T[NAV_SAT_FIX].COVARIANCE_TYPE_UNKNOWN)
@@ -121,13 +123,27 @@ class GroundTruthEncoder:
             s = self._structs[key] = lay.build()
         return s
 
+    def _middle(self, key: tuple[str, ...], tail: struct.Struct) -> bytes:
+        """The constant bytes of message ``key`` between its stamp and its ``tail`` (frame ids, padding)."""
+        m = self._middles.get(key)
+        if m is None:
+            st = self._struct(key)
+            strings = [x for name in key[1:] for x in self._str(name)]
+            full = st.pack(*self._lead, 0, 0, *strings, *([0.0] * _count_values(tail)))
+            m = self._middles[key] = full[12 : len(full) - tail.size]  # lead (4) + stamp (8) … tail
+        return m
+
     def pose_stamped(self, t: float, world_frame: str, v: M.VesselPose) -> bytes:
         """= serialised :func:`messages.pose_stamped`."""
-        return self._pose(M.split_stamp(t), world_frame, v, M.quaternion_yaw(v.heading))
+        return self._pose(self._head(M.split_stamp(t)), world_frame, v, M.quaternion_yaw(v.heading))
 
     def odometry(self, t: float, world_frame: str, body_frame: str, v: M.VesselPose) -> bytes:
         """= serialised :func:`messages.odometry`."""
-        return self._odometry(M.split_stamp(t), world_frame, body_frame, v, M.quaternion_yaw(v.heading))
+        return self._odometry(self._head(M.split_stamp(t)), world_frame, body_frame, v, M.quaternion_yaw(v.heading))
+
+    def _head(self, stamp: tuple[int, int]) -> bytes:
+        """The first 12 bytes of every header-first message: CDR header (ROS 1: seq 0) and the stamp."""
+        return self._lead_bytes + _STAMP.pack(*stamp)
 
     def nav_sat_fix(self, t: float, frame_id: str, v: M.VesselPose, origin: GeodeticOrigin | None) -> bytes:
         """= serialised :func:`messages.nav_sat_fix` (the pose's ``llh`` if it has one, else converted about ``origin``)."""
@@ -143,12 +159,13 @@ class GroundTruthEncoder:
         """One ground-truth step: per (vessel, body frame, with fix) its PoseStamped, Odometry and, if asked,
         NavSatFix; then one TFMessage of all vessels — the messages above, sharing the stamp and quaternions."""
         stamp = M.split_stamp(t)
+        head = self._head(stamp)
         out: list[bytes] = []
         tfs = []
         for v, body, fix in vessels:
             q = M.quaternion_yaw(v.heading)
-            out.append(self._pose(stamp, world_frame, v, q))
-            out.append(self._odometry(stamp, world_frame, body, v, q))
+            out.append(self._pose(head, world_frame, v, q))
+            out.append(self._odometry(head, world_frame, body, v, q))
             if fix:
                 out.append(self._fix(stamp, body, v, origin))
             tfs.append((world_frame, body, (v.north, v.east, v.down), q))
@@ -156,16 +173,15 @@ class GroundTruthEncoder:
             out.append(self._tf(stamp, tfs))
         return out
 
-    def _pose(self, stamp: tuple[int, int], world_frame: str, v: M.VesselPose, q: Sequence[float]) -> bytes:
-        return self._struct(("pose", world_frame)).pack(
-            *self._lead, *stamp, *self._str(world_frame), v.north, v.east, v.down, *q)
+    def _pose(self, head: bytes, world_frame: str, v: M.VesselPose, q: Sequence[float]) -> bytes:
+        mid = self._middles.get(("pose", world_frame)) or self._middle(("pose", world_frame), _POSE_TAIL)
+        return head + mid + _POSE_TAIL.pack(v.north, v.east, v.down, q[0], q[1], q[2], q[3])
 
-    def _odometry(self, stamp: tuple[int, int], world_frame: str, body_frame: str, v: M.VesselPose,
-                  q: Sequence[float]) -> bytes:
+    def _odometry(self, head: bytes, world_frame: str, body_frame: str, v: M.VesselPose, q: Sequence[float]) -> bytes:
+        key = ("odom", world_frame, body_frame)
+        mid = self._middles.get(key) or self._middle(key, _ODOM_TAIL)
         u, w = M.body_velocity(v)
-        return self._struct(("odom", world_frame, body_frame)).pack(
-            *self._lead, *stamp, *self._str(world_frame), *self._str(body_frame),
-            v.north, v.east, v.down, *q, u, w, 0.0, 0.0, 0.0, v.yaw_rate)
+        return head + mid + _ODOM_TAIL.pack(v.north, v.east, v.down, q[0], q[1], q[2], q[3], u, w, 0.0, 0.0, 0.0, v.yaw_rate)
 
     def _fix(self, stamp: tuple[int, int], frame_id: str, v: M.VesselPose, origin: GeodeticOrigin | None) -> bytes:
         return self._struct(("fix", frame_id)).pack(
@@ -275,3 +291,13 @@ class PointCloudEncoder:
 
 _I = struct.Struct("<I")
 _II = struct.Struct("<II")
+_STAMP = struct.Struct("<iI")
+_POSE_TAIL = struct.Struct("<7d")
+"""PoseStamped after its frame id: position, orientation."""
+_ODOM_TAIL = struct.Struct("<7d288x6d288x")
+"""Odometry after its frame ids: pose, its covariance (zero), twist, its covariance (zero)."""
+
+
+def _count_values(st: struct.Struct) -> int:
+    """How many values ``st`` packs (all ``d`` here)."""
+    return len(st.unpack(bytes(st.size)))

@@ -311,7 +311,7 @@ class RecordingWriter:
         """Sensor mounts (and, the first time, the ENU display frame above the NED world frame) on /tf_static."""
         items = [(s.parent, s.child, s.translation, s.rotation) for s in transforms]
         if not self._static_written and self.topics.display_frame:
-            items.insert(0, (self.topics.display_frame, self.topics.world_frame, (0.0, 0.0, 0.0), _enu_ned_rotation()))
+            items.insert(0, (self.topics.display_frame, self.topics.world_frame, (0.0, 0.0, 0.0), ENU_NED_ROTATION))
         if not items:
             return
         t0 = _time.perf_counter()
@@ -411,10 +411,9 @@ def open_recording(run_dir: str | os.PathLike[str], fmt: str = "mcap", **kwargs:
     return RecordingWriter(run_dir, fmt, **kwargs)
 
 
-@functools.cache
-def _enu_ned_rotation() -> tuple[float, float, float, float]:
-    """The rotation of ``world_ned`` in the ENU display frame, as a quaternion."""
-    return M.quaternion_from_matrix(M.R_ENU_NED)
+ENU_NED_ROTATION = (0.7071067811865475, 0.7071067811865475, 0.0, 0.0)
+"""The rotation of ``world_ned`` in the ENU display frame: ``quaternion_from_matrix(R_ENU_NED)`` (tested),
+written out so that the first recorded step does not wait for scipy to load."""
 
 
 def _utcnow() -> str:
