@@ -41,8 +41,16 @@ def sweeps(n: int, seed: int = 0) -> list[tuple]:
     out = []
     for _ in range(n):
         r = rng.uniform(1, 100, m)
-        out.append((r * 0.7, r * 0.7, rng.normal(size=m), rng.random(m), rng.integers(0, 16, m).astype(np.uint16),
-                    rng.uniform(0, 0.1, m)))
+        out.append(
+            (
+                r * 0.7,
+                r * 0.7,
+                rng.normal(size=m),
+                rng.random(m),
+                rng.integers(0, 16, m).astype(np.uint16),
+                rng.uniform(0, 0.1, m),
+            )
+        )
     return out
 
 
@@ -101,8 +109,14 @@ def _record(fmt: str, data: list[tuple], path: Path) -> tuple[float, float, int,
         for k, (x, y, z, i, ring, dt) in enumerate(data):
             t = t0 + k / RATE_HZ
             w.write_sweep("/lidar/points", "lidar", t, x, y, z, i, ring, dt)
-            w.write_ground_truth(t, [VesselPose("own", k * 0.1, 0.0, 0.1, ownship=True),
-                                     VesselPose("a", 50.0, k * 0.2, 1.0), VesselPose("b", -50.0, 3.0, 2.0)])
+            w.write_ground_truth(
+                t,
+                [
+                    VesselPose("own", k * 0.1, 0.0, 0.1, ownship=True),
+                    VesselPose("a", 50.0, k * 0.2, 1.0),
+                    VesselPose("b", -50.0, 3.0, 2.0),
+                ],
+            )
     wall, cpu = time.perf_counter() - start, time.process_time() - cpu0
     size = sum(p.stat().st_size for p in path.rglob("*") if p.is_file())
     return wall, cpu, size, w
@@ -146,10 +160,12 @@ def main() -> None:
         shutil.rmtree(tmp, ignore_errors=True)
     points_bytes = sum(b.size for b in raw)
     for r in results:
-        print(f"{r['format']:8s} {r['ms_per_sweep_incl_truth']:7.3f} ms/sweep  {r['MB_per_s']:7.1f} MB/s  "
-              f"share@RTF5 {r['recording_share_at_rtf5']:.4f} (CPU {r['recording_share_at_rtf5_cpu']:.4f})  "
-              f"max RTF {r['max_rtf_at_share_0.1']}  read {r['read_sweeps_per_s']} sweeps/s  "
-              f"image {r['image_612x512_bgr8_ms']:.2f} ms")
+        print(
+            f"{r['format']:8s} {r['ms_per_sweep_incl_truth']:7.3f} ms/sweep  {r['MB_per_s']:7.1f} MB/s  "
+            f"share@RTF5 {r['recording_share_at_rtf5']:.4f} (CPU {r['recording_share_at_rtf5_cpu']:.4f})  "
+            f"max RTF {r['max_rtf_at_share_0.1']}  read {r['read_sweeps_per_s']} sweeps/s  "
+            f"image {r['image_612x512_bgr8_ms']:.2f} ms"
+        )
     out = {
         "benchmark": "recording",
         "points_per_sweep": int(BEAMS * KEEP),

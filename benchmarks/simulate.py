@@ -32,8 +32,9 @@ def main() -> None:
     args = ap.parse_args()
     sc = builtin_scenario(args.scenario)
     with tempfile.TemporaryDirectory() as tmp:
-        res = simulate_scenario(sc, Path(tmp) / "run", duration=args.duration, lidar_preset=args.preset,
-                                lidar_mode=args.lidar_mode, progress=False)
+        res = simulate_scenario(
+            sc, Path(tmp) / "run", duration=args.duration, lidar_preset=args.preset, lidar_mode=args.lidar_mode, progress=False
+        )
         size = sum(p.stat().st_size for p in (Path(tmp) / "run").rglob("*") if p.is_file())
         parts = json.loads((Path(tmp) / "run" / "manifest.json").read_text())["recording_time_s"]
     lidar = lidar_for_scenario(sc, config=lidar_preset(args.preset), range_model=args.lidar_mode)

@@ -28,8 +28,10 @@ def test_truth_from_scenario_beside_bag(tmp_path: Path) -> None:
     """A foreign bag without truth topics: truth comes from the Gemini CSV beside it (last vessel = ownship)."""
     _foreign_bag(tmp_path / "real")
     t = T0 + np.arange(5) * 0.1
-    write_gemini_csv(tmp_path / "scenario.csv", [Trajectory(t, t - T0, 2 * (t - T0), np.full(5, 0.3)),
-                                                 Trajectory(t, -(t - T0), np.zeros(5), np.zeros(5))])
+    write_gemini_csv(
+        tmp_path / "scenario.csv",
+        [Trajectory(t, t - T0, 2 * (t - T0), np.full(5, 0.3)), Trajectory(t, -(t - T0), np.zeros(5), np.zeros(5))],
+    )
     with open_bag(tmp_path / "real") as rec:
         truth = recording_truth(rec)
     assert set(truth) == {"V1", "V2"} and truth["V2"].ownship and not truth["V1"].ownship

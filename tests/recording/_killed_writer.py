@@ -12,8 +12,17 @@ rng = frame_rng(0, "test/killed-writer", 0)
 k = 0
 while True:
     t = 1.6e9 + 0.1 * k
-    w.write_sweep("/lidar/points", "lidar", t, rng.normal(size=n), rng.normal(size=n), rng.normal(size=n),
-                  rng.random(n), rng.integers(0, 16, n), rng.random(n) * 0.1)
+    w.write_sweep(
+        "/lidar/points",
+        "lidar",
+        t,
+        rng.normal(size=n),
+        rng.normal(size=n),
+        rng.normal(size=n),
+        rng.random(n),
+        rng.integers(0, 16, n),
+        rng.random(n) * 0.1,
+    )
     w.write_ground_truth(t, [VesselPose("own", 0.1 * k, 0.0, 0.0, ownship=True)])
     k += 1
     if k % 5 == 1 and k > 1:  # a flush happened at the 0.5 s boundary before this sweep's write

@@ -36,7 +36,9 @@ def vessels(k: int) -> list[VesselPose]:
 def write_run(run_dir: Path, fmt: str, n_sweeps: int = 5, **kwargs) -> RecordingWriter:
     """A complete small run: /tf_static, lidar sweeps, ground truth, an image and radar plots per step."""
     with RecordingWriter(run_dir, fmt, origin=ORIGIN, seed=7, sensors={"lidar": {"model": "VLP-16"}}, **kwargs) as w:
-        w.write_static_transforms(T0, [StaticTransform("milliAmpere/base_link_frd", "lidar", (0.5, 0.0, -2.0), mount_rotation("flu"))])
+        w.write_static_transforms(
+            T0, [StaticTransform("milliAmpere/base_link_frd", "lidar", (0.5, 0.0, -2.0), mount_rotation("flu"))]
+        )
         for k in range(n_sweeps):
             t = T0 + 0.1 * k
             w.write_sweep("/lidar/points", "lidar", t, **sweep(k))

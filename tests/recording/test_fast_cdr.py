@@ -6,14 +6,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from recording_helpers import ORIGIN  # noqa: E402  (conftest puts the folder on sys.path)
 
 from seatwin.recording import RecordingWriter, VesselPose, open_bag
 from seatwin.recording import messages as M
 from seatwin.recording.fast_cdr import GroundTruthEncoder
 from seatwin.scenario.builtin import builtin_scenario
 from seatwin.sim.poses import poses_from_scenario
-
-from recording_helpers import ORIGIN  # noqa: E402  (conftest puts the folder on sys.path)
 
 NAMES = ["a", "ab", "abc", "abcd", "abcde", "milliAmpere", "Havfruen_2", "bøye"]  # lengths 1..11, non-ASCII
 TIMES = [1_600_000_000.123456789, 0.5, 12.0, 1_700_000_000.9999999999]
@@ -34,12 +33,19 @@ def test_messages_byte_exact(fmt: str) -> None:
         for t in TIMES:
             for north, east, heading, vn, ve, r in VALUES:
                 v = VesselPose(name, north, east, heading, down=-0.5 * i, v_north=vn, v_east=ve, yaw_rate=r, ownship=True)
-                assert enc.pose_stamped(t, world, v) == bytes(ser(M.pose_stamped(store, t, world, v), "geometry_msgs/msg/PoseStamped"))
-                assert enc.odometry(t, world, body, v) == bytes(ser(M.odometry(store, t, world, body, v), "nav_msgs/msg/Odometry"))
+                assert enc.pose_stamped(t, world, v) == bytes(
+                    ser(M.pose_stamped(store, t, world, v), "geometry_msgs/msg/PoseStamped")
+                )
+                assert enc.odometry(t, world, body, v) == bytes(
+                    ser(M.odometry(store, t, world, body, v), "nav_msgs/msg/Odometry")
+                )
                 assert enc.nav_sat_fix(t, body, v, ORIGIN) == bytes(
-                    ser(M.nav_sat_fix(store, t, body, v, ORIGIN), "sensor_msgs/msg/NavSatFix"))
-                tfs = [(world, body, (north, east, v.down), M.quaternion_yaw(heading)),
-                       (NAMES[-1 - i], name, (east, -north, 1e9), (0.1, -0.2, 0.3, 0.9))][: 1 + i % 2]
+                    ser(M.nav_sat_fix(store, t, body, v, ORIGIN), "sensor_msgs/msg/NavSatFix")
+                )
+                tfs = [
+                    (world, body, (north, east, v.down), M.quaternion_yaw(heading)),
+                    (NAMES[-1 - i], name, (east, -north, 1e9), (0.1, -0.2, 0.3, 0.9)),
+                ][: 1 + i % 2]
                 generic = M.tf_message(store, [M.transform_stamped(store, t, *x) for x in tfs])
                 assert enc.tf_message(t, tfs) == bytes(ser(generic, "tf2_msgs/msg/TFMessage"))
     assert enc.tf_message(1.0, []) == bytes(ser(M.tf_message(store, []), "tf2_msgs/msg/TFMessage"))
@@ -47,9 +53,9 @@ def test_messages_byte_exact(fmt: str) -> None:
 
 def _generic_ground_truth(w: RecordingWriter, t: float, vessels: list[VesselPose]) -> None:
     """The former typestore path of :meth:`RecordingWriter.write_ground_truth` (reference)."""
-    if not w._static_written:
-        w.write_static_transforms(t)
     tp, tfs = w.topics, []
+    if not w._static_written:
+        _generic_static(w, t, [])
     for v in vessels:
         body = tp.body(v.name)
         w.write(tp.topic("pose", vessel=v.name), t, M.pose_stamped(w.store, t, tp.world_frame, v))
@@ -58,6 +64,41 @@ def _generic_ground_truth(w: RecordingWriter, t: float, vessels: list[VesselPose
             w.write(tp.topic("fix", vessel=v.name), t, M.nav_sat_fix(w.store, t, body, v, w.origin))
         tfs.append(M.transform_stamped(w.store, t, tp.world_frame, body, (v.north, v.east, v.down), M.quaternion_yaw(v.heading)))
     w.write(tp.tf, t, M.tf_message(w.store, tfs))
+
+
+def _generic_static(w: RecordingWriter, t: float, mounts: list[M.StaticTransform]) -> None:
+    """The former typestore path of :meth:`RecordingWriter.write_static_transforms` (reference)."""
+    tp = w.topics
+    items = list(mounts)
+    if not w._static_written:
+        items.insert(
+            0, M.StaticTransform(tp.display_frame, tp.world_frame, (0.0, 0.0, 0.0), M.quaternion_from_matrix(M.R_ENU_NED))
+        )
+    msgs = [M.transform_stamped(w.store, t, s.parent, s.child, s.translation, s.rotation) for s in items]
+    w.write(tp.tf_static, t, M.tf_message(w.store, msgs))
+    w._static_written = True
+
+
+def test_static_transforms_byte_exact(tmp_path: Path, fmt: str) -> None:
+    mounts = [
+        M.StaticTransform("milliAmpere/base_link_frd", "lidar", (0.5, -0.25, -2.0), M.mount_rotation("flu", 0.01, -0.02, 0.3)),
+        M.StaticTransform("milliAmpere/base_link_frd", "camera_optical", (1.0, 0.0, -1.5), M.mount_rotation("optical")),
+    ]
+    raw = {}
+    for kind in ("fast", "generic"):
+        with RecordingWriter(tmp_path / kind, fmt) as w:
+            if kind == "fast":
+                w.write_static_transforms(ORIGIN_T, mounts)
+                w.write_static_transforms(ORIGIN_T + 1, mounts[:1])
+            else:
+                _generic_static(w, ORIGIN_T, mounts)
+                _generic_static(w, ORIGIN_T + 1, mounts[:1])
+        with open_bag(tmp_path / kind) as rec:
+            raw[kind] = [(topic, ts, bytes(data)) for topic, _, ts, data in rec.raw_messages()]
+    assert len(raw["fast"]) == 2 and raw["fast"] == raw["generic"]
+
+
+ORIGIN_T = 1_600_000_000.5
 
 
 def test_simulated_ground_truth_reads_back_identically(tmp_path: Path, fmt: str) -> None:
@@ -105,8 +146,12 @@ def test_point_cloud2_byte_exact(fmt: str, row_step_zero: bool) -> None:
                 t = TIMES[(i + n) % len(TIMES)]
                 data = pack(layout, **cols)
                 for dense in (True, False):
-                    want = bytes(ser(M.point_cloud2(store, t, frame, layout, data, is_dense=dense,
-                                                    row_step_zero=row_step_zero), POINT_CLOUD2))
+                    want = bytes(
+                        ser(
+                            M.point_cloud2(store, t, frame, layout, data, is_dense=dense, row_step_zero=row_step_zero),
+                            POINT_CLOUD2,
+                        )
+                    )
                     assert bytes(enc.encode(t, frame, layout, cols, is_dense=dense)) == want
                     assert bytes(enc.encode_packed(t, frame, layout, data, is_dense=dense)) == want
 
@@ -136,4 +181,6 @@ def test_nav_sat_fix_takes_a_converted_position(fmt: str) -> None:
     assert enc.nav_sat_fix(5.0, "own/base_link", replace(v, llh=llh), None) == enc.nav_sat_fix(5.0, "own/base_link", v, ORIGIN)
     store, ser = _serializer(fmt)
     moved = replace(v, llh=(63.0, 10.0, 5.0))
-    assert enc.nav_sat_fix(5.0, "b", moved, ORIGIN) == bytes(ser(M.nav_sat_fix(store, 5.0, "b", moved, ORIGIN), "sensor_msgs/msg/NavSatFix"))
+    assert enc.nav_sat_fix(5.0, "b", moved, ORIGIN) == bytes(
+        ser(M.nav_sat_fix(store, 5.0, "b", moved, ORIGIN), "sensor_msgs/msg/NavSatFix")
+    )

@@ -17,10 +17,25 @@ from seatwin.rng import frame_rng
 
 # Ouster os1 driver style: x,y,z float32, 4 bytes padding, intensity float32, t uint32, reflectivity
 # uint16, ring uint8, ambient uint16, range uint32; point_step 48 (padding at the end too).
-OUSTER = [("x", 0, 7), ("y", 4, 7), ("z", 8, 7), ("intensity", 16, 7), ("t", 20, 6), ("reflectivity", 24, 4),
-          ("ring", 26, 2), ("ambient", 28, 4), ("range", 32, 6)]
-OUSTER_DTYPE = np.dtype({"names": [f[0] for f in OUSTER], "formats": ["f4", "f4", "f4", "f4", "u4", "u2", "u1", "u2", "u4"],
-                         "offsets": [f[1] for f in OUSTER], "itemsize": 48})
+OUSTER = [
+    ("x", 0, 7),
+    ("y", 4, 7),
+    ("z", 8, 7),
+    ("intensity", 16, 7),
+    ("t", 20, 6),
+    ("reflectivity", 24, 4),
+    ("ring", 26, 2),
+    ("ambient", 28, 4),
+    ("range", 32, 6),
+]
+OUSTER_DTYPE = np.dtype(
+    {
+        "names": [f[0] for f in OUSTER],
+        "formats": ["f4", "f4", "f4", "f4", "u4", "u2", "u1", "u2", "u4"],
+        "offsets": [f[1] for f in OUSTER],
+        "itemsize": 48,
+    }
+)
 
 
 def _ouster_points(n: int, seed: int = 0, big_endian: bool = False) -> np.ndarray:
@@ -40,9 +55,16 @@ def _cloud(store, points: np.ndarray, height: int, row_pad: int, big_endian: boo
     rows = points.view(np.uint8).reshape(height, width * 48)
     data = np.concatenate([rows, np.full((height, row_pad), 0xAB, np.uint8)], axis=1).reshape(-1)
     return T["sensor_msgs/msg/PointCloud2"](
-        header=header(store, T0, "os_sensor"), height=height, width=width,
+        header=header(store, T0, "os_sensor"),
+        height=height,
+        width=width,
         fields=[PF(name=n, offset=o, datatype=d, count=1) for n, o, d in OUSTER],
-        is_bigendian=big_endian, point_step=48, row_step=width * 48 + row_pad, data=data, is_dense=False)
+        is_bigendian=big_endian,
+        point_step=48,
+        row_step=width * 48 + row_pad,
+        data=data,
+        is_dense=False,
+    )
 
 
 def _write_foreign(path: Path, fmt: str, msgs: dict[str, list]) -> None:
@@ -110,8 +132,9 @@ def test_images_all_encodings(tmp_path: Path, fmt: str) -> None:
         h, w = a.shape[:2]
         rows = a.reshape(h, -1)
         data = np.concatenate([rows, np.zeros((h, pad), np.uint8)], axis=1).reshape(-1)
-        return T["sensor_msgs/msg/Image"](header=header(store, T0, "cam"), height=h, width=w, encoding=enc,
-                                          is_bigendian=0, step=rows.shape[1] + pad, data=data)
+        return T["sensor_msgs/msg/Image"](
+            header=header(store, T0, "cam"), height=h, width=w, encoding=enc, is_bigendian=0, step=rows.shape[1] + pad, data=data
+        )
 
     msgs = {
         "/cam/bgr": [img("bgr8", bgr, pad=3)],
@@ -145,8 +168,15 @@ def test_compressed_images_written_by_us(tmp_path: Path) -> None:
 
 def test_unsupported_encoding_is_input_error(tmp_path: Path) -> None:
     store = typestore("mcap")
-    m = store.types["sensor_msgs/msg/Image"](header=header(store, T0, "c"), height=1, width=1, encoding="bayer_rggb8",
-                                             is_bigendian=0, step=1, data=np.zeros(1, np.uint8))
+    m = store.types["sensor_msgs/msg/Image"](
+        header=header(store, T0, "c"),
+        height=1,
+        width=1,
+        encoding="bayer_rggb8",
+        is_bigendian=0,
+        step=1,
+        data=np.zeros(1, np.uint8),
+    )
     _write_foreign(tmp_path / "b", "mcap", {"/c": [m]})
     with pytest.raises(InputError, match="unsupported image encoding 'bayer_rggb8'"):
         list(open_bag(tmp_path / "b").images())

@@ -5,11 +5,10 @@ from __future__ import annotations
 import struct
 
 import numpy as np
+from recording_helpers import T0, sweep
 
 from seatwin.recording import VLP16_LAYOUT, pack, unpack
 from seatwin.recording.messages import point_cloud2, split_stamp, typestore
-
-from recording_helpers import T0, sweep
 
 TABLE_4_2 = [("x", 0, 7, 1), ("y", 4, 7, 1), ("z", 8, 7, 1), ("intensity", 12, 7, 1), ("ring", 16, 4, 1), ("time", 18, 7, 1)]
 

@@ -91,7 +91,7 @@ def test_display_frame_rotation_maps_ned_to_enu() -> None:
     from seatwin.recording.messages import quaternion_from_matrix
     from seatwin.recording.writer import ENU_NED_ROTATION
 
-    assert ENU_NED_ROTATION == quaternion_from_matrix(R_ENU_NED)  # written out, the same bytes on /tf_static
+    assert quaternion_from_matrix(R_ENU_NED) == ENU_NED_ROTATION  # written out, the same bytes on /tf_static
     # a lidar (FLU) looking 90° to starboard: its x axis is the body's y (starboard) axis
     r = Rotation.from_quat(mount_rotation("flu", yaw=math.pi / 2)).as_matrix()
     np.testing.assert_allclose(r @ [1, 0, 0], [0, 1, 0], atol=1e-12)
@@ -146,10 +146,9 @@ def test_bad_inputs(tmp_path: Path) -> None:
 
 
 def test_exception_inside_run_marks_incomplete(tmp_path: Path) -> None:
-    with pytest.raises(RuntimeError):
-        with RecordingWriter(tmp_path / "run", "mcap") as w:
-            w.write_sweep("/lidar/points", "lidar", T0, **sweep(0))
-            raise RuntimeError("simulator crashed")
+    with pytest.raises(RuntimeError), RecordingWriter(tmp_path / "run", "mcap") as w:
+        w.write_sweep("/lidar/points", "lidar", T0, **sweep(0))
+        raise RuntimeError("simulator crashed")
     with open_bag(tmp_path / "run") as rec:
         assert rec.complete is False and not rec.recovered  # bag finished cleanly, run did not
         assert rec.manifest["error"] == "RuntimeError: simulator crashed"

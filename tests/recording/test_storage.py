@@ -19,8 +19,12 @@ from seatwin.recording.storage.ros1 import LeanRos1Writer
 from seatwin.recording.storage.rosbag2 import LATCHED_QOS
 from seatwin.rng import frame_rng
 
-TOPICS = [("/a", "std_msgs/msg/String", False), ("/b", "std_msgs/msg/UInt8MultiArray", False),
-          ("/tf_static", "tf2_msgs/msg/TFMessage", True), ("/c", "std_msgs/msg/ByteMultiArray", False)]
+TOPICS = [
+    ("/a", "std_msgs/msg/String", False),
+    ("/b", "std_msgs/msg/UInt8MultiArray", False),
+    ("/tf_static", "tf2_msgs/msg/TFMessage", True),
+    ("/c", "std_msgs/msg/ByteMultiArray", False),
+]
 
 
 def _script() -> list[tuple[str, int, bytes]]:
@@ -31,7 +35,9 @@ def _script() -> list[tuple[str, int, bytes]]:
     steps: list = [("add", 0), ("add", 1), ("add", 2), ("write", 2, t - 7, b"\x00\x01\x00\x00" + bytes(4))]
     for k in range(60):
         steps.append(("write", 0, t + k * 1000, bytes(rng.integers(0, 255, int(rng.integers(0, 50)), dtype=np.uint8))))
-        steps.append(("write", 1, t + k * 1000 - 500, rng.integers(0, 255, int(rng.integers(0, 200_000)), dtype=np.uint8).tobytes()))
+        steps.append(
+            ("write", 1, t + k * 1000 - 500, rng.integers(0, 255, int(rng.integers(0, 200_000)), dtype=np.uint8).tobytes())
+        )
         if k % 17 == 0:
             steps.append(("flush",))
         if k == 17:
@@ -62,8 +68,9 @@ def _rosbags(fmt: str, path: Path) -> None:
     for step in _script():
         if step[0] == "add":
             topic, msgtype, latched = TOPICS[step[1]]
-            conns[step[1]] = w.add_connection(topic, msgtype, typestore=typestore(fmt),
-                                              offered_qos_profiles=[LATCHED_QOS] if latched else [])
+            conns[step[1]] = w.add_connection(
+                topic, msgtype, typestore=typestore(fmt), offered_qos_profiles=[LATCHED_QOS] if latched else []
+            )
         elif step[0] == "write":
             w.write(conns[step[1]], step[2], step[3])
         elif fmt == "mcap" and w.storage.chunk.msgs:
@@ -186,7 +193,11 @@ def test_ros1_storage_latches_tf_static(tmp_path: Path) -> None:
 
 
 YAML_CASES = [
-    {}, [], {"a": []}, {"a": {}}, [{"x": 1, "b": [True, None, "s"]}],
+    {},
+    [],
+    {"a": []},
+    {"a": {}},
+    [{"x": 1, "b": [True, None, "s"]}],
     {"k" * 40: "v" * 37, "k" * 41: "v" * 37, "q": "v" * 78},  # around the 80-column wrap
     {"outer": {"inner": {"deep": "h" * 70}}},
     {"s": ["a" * 78, "b" * 79, "c" * 90]},  # long sequence items: ruamel's own rule

@@ -22,10 +22,14 @@ ORIGIN = GeodeticOrigin(63.4305, 10.3951, 0.0)
 
 def _scenario() -> Scenario:
     t = T0 + np.arange(11) * 0.1
-    return Scenario("s", [
-        Vessel("own", Role.OWNSHIP, Trajectory(t, np.zeros(11), np.arange(11) * 0.2, np.full(11, math.pi / 2))),
-        Vessel("tgt", Role.TARGET, Trajectory(t, 50 + np.arange(11) * 0.5, np.zeros(11), np.zeros(11))),
-    ], origin=ORIGIN)
+    return Scenario(
+        "s",
+        [
+            Vessel("own", Role.OWNSHIP, Trajectory(t, np.zeros(11), np.arange(11) * 0.2, np.full(11, math.pi / 2))),
+            Vessel("tgt", Role.TARGET, Trajectory(t, 50 + np.arange(11) * 0.5, np.zeros(11), np.zeros(11))),
+        ],
+        origin=ORIGIN,
+    )
 
 
 def test_poses_from_scenario_feed_the_writer(tmp_path: Path) -> None:
@@ -54,8 +58,9 @@ def test_pose_table_equals_step_by_step() -> None:
     table = PoseTable.from_scenario(sc, times)
     for k in range(0, 600, 7):
         got, want = table.poses(k), poses_from_scenario(sc, float(times[k]))
-        assert [(p.name, p.north, p.east, p.heading, p.v_north, p.v_east, p.yaw_rate, p.ownship) for p in got] == \
-               [(p.name, p.north, p.east, p.heading, p.v_north, p.v_east, p.yaw_rate, p.ownship) for p in want]
+        assert [(p.name, p.north, p.east, p.heading, p.v_north, p.v_east, p.yaw_rate, p.ownship) for p in got] == [
+            (p.name, p.north, p.east, p.heading, p.v_north, p.v_east, p.yaw_rate, p.ownship) for p in want
+        ]
         for p, q in zip(got, want):
             if q.ownship:
                 np.testing.assert_allclose(p.llh, vessel_llh(q, sc.origin), rtol=0, atol=1e-12)

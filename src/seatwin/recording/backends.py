@@ -14,6 +14,7 @@ the last complete chunk:
 from __future__ import annotations
 
 import bz2
+import contextlib
 import mmap
 import sqlite3
 import struct
@@ -107,7 +108,9 @@ class RosbagsBackend(Backend):
         r = self._reader
         for conn in r.connections:
             fmt_ = {MessageDefinitionFormat.MSG: "msg", MessageDefinitionFormat.IDL: "idl"}.get(conn.msgdef.format, "")
-            info = self.topics.setdefault(conn.topic, TopicInfo(conn.topic, conn.msgtype, 0, conn.msgdef.data if fmt_ else "", fmt_))
+            info = self.topics.setdefault(
+                conn.topic, TopicInfo(conn.topic, conn.msgtype, 0, conn.msgdef.data if fmt_ else "", fmt_)
+            )
             info.count += max(conn.msgcount, 0)
         if r.message_count:
             self.start_ns, self.end_ns = r.start_time, r.end_time - 1
@@ -171,7 +174,10 @@ class McapScanBackend(Backend):
                     if rec.topic not in self.topics:
                         enc = schema.encoding if schema else ""
                         self.topics[rec.topic] = TopicInfo(
-                            rec.topic, msgtype, 0, schema.data.decode() if schema else "",
+                            rec.topic,
+                            msgtype,
+                            0,
+                            schema.data.decode() if schema else "",
                             {"ros2msg": "msg", "ros1msg": "msg", "ros2idl": "idl"}.get(enc, ""),
                         )
                 elif isinstance(rec, Message):
@@ -252,7 +258,7 @@ class Ros1ScanBackend(Backend):
         start = data.find(b"\n") + 1
         conns: dict[int, tuple[str, str]] = {}
         end = start
-        for hdr, body, end in _records(data, start):
+        for hdr, body, end in _records(data, start):  # noqa: B007 - the last record's end is checked below
             op = hdr.get("op", b"\x00")[0]
             if op != _OP_CHUNK:
                 if op == _OP_CONN:
@@ -279,10 +285,8 @@ class Ros1ScanBackend(Backend):
 
     def close(self) -> None:
         if isinstance(self._data, mmap.mmap):
-            try:
+            with contextlib.suppress(BufferError):  # an unfinished generator still holds a view; the GC closes it
                 self._data.close()
-            except BufferError:  # a generator left unfinished still holds a view; the GC closes it
-                pass
 
     def _connection(self, hdr: dict[str, bytes], body: memoryview, conns: dict[int, tuple[str, str]]) -> None:
         (cid,) = struct.unpack("<I", hdr["conn"])

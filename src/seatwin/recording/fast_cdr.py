@@ -154,8 +154,9 @@ class GroundTruthEncoder:
         ``transforms``: (parent, child, translation xyz, rotation xyzw)."""
         return self._tf(M.split_stamp(t), transforms)
 
-    def step(self, t: float, world_frame: str, vessels: Sequence[tuple[M.VesselPose, str, bool]],
-             origin: GeodeticOrigin | None) -> list[bytes]:
+    def step(
+        self, t: float, world_frame: str, vessels: Sequence[tuple[M.VesselPose, str, bool]], origin: GeodeticOrigin | None
+    ) -> list[bytes]:
         """One ground-truth step: per (vessel, body frame, with fix) its PoseStamped, Odometry and, if asked,
         NavSatFix; then one TFMessage of all vessels — the messages above, sharing the stamp and quaternions."""
         stamp = M.split_stamp(t)
@@ -185,7 +186,8 @@ class GroundTruthEncoder:
 
     def _fix(self, stamp: tuple[int, int], frame_id: str, v: M.VesselPose, origin: GeodeticOrigin | None) -> bytes:
         return self._struct(("fix", frame_id)).pack(
-            *self._lead, *stamp, *self._str(frame_id), *self._fix_status[:2], *M.vessel_llh(v, origin), self._fix_status[2])
+            *self._lead, *stamp, *self._str(frame_id), *self._fix_status[:2], *M.vessel_llh(v, origin), self._fix_status[2]
+        )
 
     def _tf(self, stamp: tuple[int, int], transforms: Sequence[tuple[str, str, Sequence[float], Sequence[float]]]) -> bytes:
         key: list[str] = ["tf"]
@@ -271,8 +273,9 @@ class PointCloudEncoder:
         points = np.frombuffer(msg, dtype=layout.dtype, count=n, offset=len(prefix))
         return msg, points
 
-    def encode(self, t: float, frame_id: str, layout: Layout, columns: dict[str, ArrayLike | None],
-               is_dense: bool = True) -> bytearray:
+    def encode(
+        self, t: float, frame_id: str, layout: Layout, columns: dict[str, ArrayLike | None], is_dense: bool = True
+    ) -> bytearray:
         """Columns of ``layout`` (absent ones 0, checked as :func:`pointcloud.pack` checks them) → the message."""
         arrays, n = checked_columns(layout, columns)
         msg, points = self._message(t, frame_id, layout, n, is_dense)
@@ -283,7 +286,9 @@ class PointCloudEncoder:
         """Points already packed (:func:`pointcloud.pack`) → the message."""
         raw = np.ascontiguousarray(data).view(np.uint8).reshape(-1)
         if raw.size % layout.point_step:
-            raise InputError("point cloud", f"{raw.size} bytes of points are not a whole number of {layout.point_step}-byte points")
+            raise InputError(
+                "point cloud", f"{raw.size} bytes of points are not a whole number of {layout.point_step}-byte points"
+            )
         msg, points = self._message(t, frame_id, layout, raw.size // layout.point_step, is_dense)
         points.view(np.uint8)[:] = raw[: points.nbytes]
         return msg

@@ -13,7 +13,7 @@ from seatwin.recording.reader import Recording
 def _iso(ns: int | None) -> str | None:
     if ns is None:
         return None
-    return dt.datetime.fromtimestamp(ns / 1e9, dt.timezone.utc).isoformat(timespec="milliseconds")
+    return dt.datetime.fromtimestamp(ns / 1e9, dt.UTC).isoformat(timespec="milliseconds")
 
 
 def bag_info(path: str | os.PathLike[str], scan: bool = True) -> dict[str, Any]:
@@ -78,7 +78,9 @@ def format_info(d: dict[str, Any]) -> str:
         lines.append(f"seatwin:   {d['seatwin_version']}  seed {d['seed']}")
     if d.get("error"):
         lines.append(f"error:     {d['error']}")
-    rows = [(k, v["type"], str(v["count"]), "-" if v["rate_hz"] is None else f"{v['rate_hz']:.2f} Hz") for k, v in d["topics"].items()]
+    rows = [
+        (k, v["type"], str(v["count"]), "-" if v["rate_hz"] is None else f"{v['rate_hz']:.2f} Hz") for k, v in d["topics"].items()
+    ]
     if rows:
         w = [max(len(r[i]) for r in rows + [("topic", "type", "count", "rate")]) for i in range(4)]
         lines.append("topics:")

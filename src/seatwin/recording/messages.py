@@ -88,7 +88,9 @@ R_ENU_NED = NED_TO_ENU
 """Maps NED coordinates to ENU: the rotation of the ``world_ned`` frame in the ``world`` (ENU) frame."""
 
 
-def mount_rotation(convention: str = "flu", roll: float = 0.0, pitch: float = 0.0, yaw: float = 0.0) -> tuple[float, float, float, float]:
+def mount_rotation(
+    convention: str = "flu", roll: float = 0.0, pitch: float = 0.0, yaw: float = 0.0
+) -> tuple[float, float, float, float]:
     """Quaternion (x, y, z, w) of a sensor frame in the vessel body frame (FRD).
 
     The sensor is first turned by yaw (to starboard), pitch (nose up), roll (starboard down) —
@@ -109,8 +111,9 @@ class StaticTransform:
     rotation: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
 
 
-def transform_stamped(store: Typestore, t: float, parent: str, child: str,
-                      translation: Sequence[float], rotation: Sequence[float]) -> Any:
+def transform_stamped(
+    store: Typestore, t: float, parent: str, child: str, translation: Sequence[float], rotation: Sequence[float]
+) -> Any:
     T = store.types
     return T["geometry_msgs/msg/TransformStamped"](
         header=header(store, t, parent),
@@ -138,8 +141,16 @@ def _vec(store: Typestore, v: Sequence[float]) -> Any:
     return store.types["geometry_msgs/msg/Vector3"](x=float(v[0]), y=float(v[1]), z=float(v[2]))
 
 
-def point_cloud2(store: Typestore, t: float, frame_id: str, layout: Layout, data: NDArray[np.uint8],
-                 *, is_dense: bool = True, row_step_zero: bool = False) -> Any:
+def point_cloud2(
+    store: Typestore,
+    t: float,
+    frame_id: str,
+    layout: Layout,
+    data: NDArray[np.uint8],
+    *,
+    is_dense: bool = True,
+    row_step_zero: bool = False,
+) -> Any:
     """A PointCloud2 of ``layout`` (height 1, little endian). ``row_step_zero`` reproduces the thesis bags."""
     T = store.types
     PF = T["sensor_msgs/msg/PointField"]
@@ -172,15 +183,22 @@ def image(store: Typestore, t: float, frame_id: str, pixels: NDArray[np.uint8], 
         raise ValueError(f"{encoding} needs an H×W×{c} array, got shape {pixels.shape}")
     h, w = a.shape[:2]
     return store.types["sensor_msgs/msg/Image"](
-        header=header(store, t, frame_id), height=h, width=w, encoding=encoding, is_bigendian=0,
-        step=w * c, data=a.reshape(-1),
+        header=header(store, t, frame_id),
+        height=h,
+        width=w,
+        encoding=encoding,
+        is_bigendian=0,
+        step=w * c,
+        data=a.reshape(-1),
     )
 
 
 def compressed_image(store: Typestore, t: float, frame_id: str, payload: bytes, fmt: str) -> Any:
     """A ``sensor_msgs/CompressedImage`` (``fmt`` e.g. ``jpeg`` or ``png``) from encoded bytes."""
     return store.types["sensor_msgs/msg/CompressedImage"](
-        header=header(store, t, frame_id), format=fmt, data=np.frombuffer(payload, dtype=np.uint8),
+        header=header(store, t, frame_id),
+        format=fmt,
+        data=np.frombuffer(payload, dtype=np.uint8),
     )
 
 
@@ -218,8 +236,9 @@ def pose_stamped(store: Typestore, t: float, world_frame: str, v: VesselPose) ->
     T = store.types
     return T["geometry_msgs/msg/PoseStamped"](
         header=header(store, t, world_frame),
-        pose=T["geometry_msgs/msg/Pose"](position=_point(store, (v.north, v.east, v.down)),
-                                         orientation=_quat(store, quaternion_yaw(v.heading))),
+        pose=T["geometry_msgs/msg/Pose"](
+            position=_point(store, (v.north, v.east, v.down)), orientation=_quat(store, quaternion_yaw(v.heading))
+        ),
     )
 
 
@@ -238,8 +257,9 @@ def odometry(store: Typestore, t: float, world_frame: str, body_frame: str, v: V
         header=header(store, t, world_frame),
         child_frame_id=body_frame,
         pose=T["geometry_msgs/msg/PoseWithCovariance"](
-            pose=T["geometry_msgs/msg/Pose"](position=_point(store, (v.north, v.east, v.down)),
-                                             orientation=_quat(store, quaternion_yaw(v.heading))),
+            pose=T["geometry_msgs/msg/Pose"](
+                position=_point(store, (v.north, v.east, v.down)), orientation=_quat(store, quaternion_yaw(v.heading))
+            ),
             covariance=zeros,
         ),
         twist=T["geometry_msgs/msg/TwistWithCovariance"](
@@ -257,7 +277,9 @@ def nav_sat_fix(store: Typestore, t: float, frame_id: str, v: VesselPose, origin
     return T["sensor_msgs/msg/NavSatFix"](
         header=header(store, t, frame_id),
         status=NSS(status=NSS.STATUS_FIX, service=NSS.SERVICE_GPS),
-        latitude=float(lat), longitude=float(lon), altitude=float(alt),
+        latitude=float(lat),
+        longitude=float(lon),
+        altitude=float(alt),
         position_covariance=np.zeros(9, dtype=np.float64),
         position_covariance_type=T["sensor_msgs/msg/NavSatFix"].COVARIANCE_TYPE_UNKNOWN,
     )

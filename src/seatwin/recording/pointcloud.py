@@ -142,7 +142,9 @@ def checked_columns(layout: Layout, columns: dict[str, ArrayLike | None]) -> tup
             info = np.iinfo(kind)
             lo, hi = a.min(), a.max()
             if lo < info.min or hi > info.max or (a.dtype.kind == "f" and not np.isfinite(a).all()):
-                raise InputError("point cloud", f"field {k!r} ({kind.name}) needs values in [{info.min}, {info.max}], got [{lo}, {hi}]")
+                raise InputError(
+                    "point cloud", f"field {k!r} ({kind.name}) needs values in [{info.min}, {info.max}], got [{lo}, {hi}]"
+                )
     return arrays, n
 
 
@@ -154,8 +156,13 @@ def fill(points: NDArray[Any], arrays: dict[str, NDArray[Any]]) -> None:
 
 
 def unpack(
-    data: ArrayLike | bytes, fields: Sequence[object], point_step: int, width: int, height: int = 1,
-    row_step: int = 0, big_endian: bool = False,
+    data: ArrayLike | bytes,
+    fields: Sequence[object],
+    point_step: int,
+    width: int,
+    height: int = 1,
+    row_step: int = 0,
+    big_endian: bool = False,
 ) -> NDArray:
     """The points of a PointCloud2 as a flat structured array (fields named as in the message).
 

@@ -127,7 +127,11 @@ def _find_bag(path: Path) -> tuple[Path, str, Path | None]:
     bags = sorted(path.glob("*.bag"))
     if len(bags) == 1:
         return bags[0], "ros1", None
-    subdirs = [d for d in sorted(path.iterdir()) if d.is_dir() and ((d / "metadata.yaml").exists() or any(d.glob("*.mcap")) or any(d.glob("*.db3")))]
+    subdirs = [
+        d
+        for d in sorted(path.iterdir())
+        if d.is_dir() and ((d / "metadata.yaml").exists() or any(d.glob("*.mcap")) or any(d.glob("*.db3")))
+    ]
     if len(subdirs) == 1:
         return subdirs[0], _rosbag2_dir_format(subdirs[0]), None
     raise InputError(path, "no bag found here (expected manifest.json, metadata.yaml, *.mcap, *.db3 or one *.bag)")
@@ -157,10 +161,7 @@ def _open_backend(bag: Path, fmt: str) -> B.Backend:
     if fmt not in ("mcap", "sqlite3"):
         raise InputError(bag, f"unsupported rosbag2 storage {fmt!r}; expected mcap or sqlite3")
     storage = [bag] if bag.is_file() else sorted(bag.glob("*.mcap" if fmt == "mcap" else "*.db3"))
-    if fmt == "sqlite3":
-        journaled = any(B.rollback_sqlite_journal(db) for db in storage)
-    else:
-        journaled = False
+    journaled = fmt == "sqlite3" and any(B.rollback_sqlite_journal(db) for db in storage)
     if bag.is_dir() and (bag / "metadata.yaml").exists() and not journaled:
         try:
             return B.RosbagsBackend(bag, fmt)
@@ -281,11 +282,21 @@ class Recording:
         for m in self.messages(names):
             c = m.msg
             try:
-                pts = unpack(c.data, c.fields, int(c.point_step), int(c.width), int(c.height), int(c.row_step), bool(c.is_bigendian))
+                pts = unpack(
+                    c.data, c.fields, int(c.point_step), int(c.width), int(c.height), int(c.row_step), bool(c.is_bigendian)
+                )
             except InputError as exc:
                 raise InputError(self.bag, f"{exc.detail} (message at {m.log_time_ns} ns)", where=m.topic) from None
-            yield PointCloud(m.topic, stamp_s(c.header.stamp), c.header.frame_id, pts, int(c.height), int(c.width),
-                             bool(c.is_dense), m.log_time_ns)
+            yield PointCloud(
+                m.topic,
+                stamp_s(c.header.stamp),
+                c.header.frame_id,
+                pts,
+                int(c.height),
+                int(c.width),
+                bool(c.is_dense),
+                m.log_time_ns,
+            )
 
     def radar_topics(self) -> list[str]:
         """PointCloud2 topics that look like radar plots (our radar template, or range+bearing fields)."""
@@ -360,7 +371,9 @@ class Recording:
                     if kind == "odom":
                         lin, ang = msg.twist.twist.linear, msg.twist.twist.angular
                         c, s = math.cos(yaw), math.sin(yaw)
-                        rows.append((stamp_s(msg.header.stamp), p.x, p.y, p.z, yaw, c * lin.x - s * lin.y, s * lin.x + c * lin.y, ang.z))
+                        rows.append(
+                            (stamp_s(msg.header.stamp), p.x, p.y, p.z, yaw, c * lin.x - s * lin.y, s * lin.x + c * lin.y, ang.z)
+                        )
                     else:
                         rows.append((stamp_s(msg.header.stamp), p.x, p.y, p.z, yaw, np.nan, np.nan, np.nan))
                 if not rows:
@@ -370,8 +383,12 @@ class Recording:
                     a[:, 5] = np.gradient(a[:, 1], a[:, 0])
                     a[:, 6] = np.gradient(a[:, 2], a[:, 0])
                     a[:, 7] = np.gradient(np.unwrap(a[:, 4]), a[:, 0])
-                out[name] = VesselTruth(name, *(a[:, i].copy() for i in range(8)),
-                                        ownship=roles.get(name) == "ownship" or name in fix_vessels, source=f"{self.bag} {topic}")
+                out[name] = VesselTruth(
+                    name,
+                    *(a[:, i].copy() for i in range(8)),
+                    ownship=roles.get(name) == "ownship" or name in fix_vessels,
+                    source=f"{self.bag} {topic}",
+                )
         return out
 
     def close(self) -> None:

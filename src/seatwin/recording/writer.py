@@ -18,15 +18,16 @@ at most every ``manifest_wall_s`` of wall time; they never exceed what the bag h
 
 from __future__ import annotations
 
+import contextlib
 import datetime as dt
 import functools
 import os
 import shutil
 import time as _time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from types import TracebackType
-from typing import Any, Callable, TypeVar
+from typing import Any, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -97,7 +98,7 @@ class RecordingWriter:
         metadata: dict[str, Any] | None = None,
         flush_interval_s: float = 1.0,
         flush_wall_s: float = 2.0,
-        manifest_wall_s: float = 1.0,
+        manifest_wall_s: float = 0.25,
         row_step_zero: bool = False,
         fsync: bool = False,
     ) -> None:
@@ -116,7 +117,7 @@ class RecordingWriter:
         self.counts: dict[str, int] = {}
         self.types: dict[str, str] = {}
         self.vessels: dict[str, str] = {}
-        self._vessel_names: dict[str, tuple[str, str, str, str]] = {}
+        self._vessel_slots: dict[tuple[str, bool], tuple[str, tuple[tuple[str, str], ...]]] = {}
         self.notes: list[str] = []
         self._conns: dict[str, Any] = {}
         self._t0: float | None = None
@@ -155,7 +156,9 @@ class RecordingWriter:
             "started_utc": _utcnow(),
             "finished_utc": None,
             "seed": seed,
-            "origin": None if origin is None else {"lat_deg": origin.lat_deg, "lon_deg": origin.lon_deg, "height_m": origin.height_m},
+            "origin": None
+            if origin is None
+            else {"lat_deg": origin.lat_deg, "lon_deg": origin.lon_deg, "height_m": origin.height_m},
             "scenario": scenario_name,
             "sensors": sensors or {},
             "topic_config": self.topics.to_dict(),
@@ -192,23 +195,32 @@ class RecordingWriter:
         self._write_batch(t, ((topic, msgtype, data),))
 
     def _write_batch(self, t: float, items: Sequence[tuple[str, str, bytes | memoryview]]) -> None:
-        """Write serialised messages all stamped ``t`` (one stamp conversion and one flush check)."""
+        """Write serialised messages all stamped ``t`` (one stamp conversion, one flush check); count them."""
         if self._closed:
             raise RecordingError(f"{self.bag}: recording is closed")
         t0 = _time.perf_counter()
         try:
-            conns, types, counts = self._conns, self.types, self.counts
+            stamp = M.stamp_ns(t)
+            conns, types = self._conns, self.types
             batch = []
             for topic, msgtype, data in items:
                 conn = conns.get(topic)
                 if conn is None or types[topic] != msgtype:
-                    conn = self._connection(topic, msgtype)
+                    break
                 batch.append((conn, data))
-            self.storage.write_many(batch, M.stamp_ns(t))
+            else:
+                self.storage.write_many(batch, stamp)
+                batch = None
+            if batch is not None:  # a topic's first message: its connection goes into the bag just before it
+                for topic, msgtype, data in items:
+                    self.storage.write(self._connection(topic, msgtype), stamp, data)
+            counts = self.counts
             for topic, _, _ in items:
                 counts[topic] += 1
-            self._t0 = t if self._t0 is None else min(self._t0, t)
-            self._t1 = t if self._t1 is None else max(self._t1, t)
+            if self._t0 is None or t < self._t0:
+                self._t0 = t
+            if self._t1 is None or t > self._t1:
+                self._t1 = t
             if self._last_flush is None:
                 self._last_flush = t
             elif t - self._last_flush >= self.flush_interval_s or t0 - self._last_flush_wall >= self.flush_wall_s:
@@ -237,21 +249,25 @@ class RecordingWriter:
     def _fail(self, exc: OSError) -> None:
         self._error = f"{type(exc).__name__}: {exc}"
         self._closed = True
-        try:
+        with contextlib.suppress(Exception):  # the bag is being abandoned; its readable prefix stays
             self.storage.abort()
-        except Exception:  # noqa: BLE001 - the bag is being abandoned; its readable prefix stays
-            pass
-        try:
+        with contextlib.suppress(OSError):
             self._write_manifest()
-        except OSError:
-            pass
         raise RecordingError(f"{self.bag}: recording stopped: {self._error}; the bag is readable up to its last flush") from exc
 
     # ------------------------------------------------------------------ typed helpers
     @_timed
     def write_sweep(
-        self, topic: str, frame_id: str, t: float,
-        x: ArrayLike, y: ArrayLike, z: ArrayLike, intensity: ArrayLike, ring: ArrayLike, time: ArrayLike,
+        self,
+        topic: str,
+        frame_id: str,
+        t: float,
+        x: ArrayLike,
+        y: ArrayLike,
+        z: ArrayLike,
+        intensity: ArrayLike,
+        ring: ArrayLike,
+        time: ArrayLike,
     ) -> None:
         """A lidar sweep as PointCloud2 in the VLP-16 layout (thesis Table 4.2); ``t`` = sweep start,
         ``time`` = seconds since it; pass only returned points (no-return beams omitted: is_dense)."""
@@ -272,9 +288,19 @@ class RecordingWriter:
 
     @_timed
     def write_radar(
-        self, topic: str, frame_id: str, t: float, x: ArrayLike, y: ArrayLike, z: ArrayLike | None = None, *,
-        intensity: ArrayLike | None = None, range: ArrayLike | None = None, bearing: ArrayLike | None = None,
-        time: ArrayLike | None = None, origin: tuple[float, float] = (0.0, 0.0),
+        self,
+        topic: str,
+        frame_id: str,
+        t: float,
+        x: ArrayLike,
+        y: ArrayLike,
+        z: ArrayLike | None = None,
+        *,
+        intensity: ArrayLike | None = None,
+        range: ArrayLike | None = None,
+        bearing: ArrayLike | None = None,
+        time: ArrayLike | None = None,
+        origin: tuple[float, float] = (0.0, 0.0),
     ) -> None:
         """Radar plots of one scan as PointCloud2 (:data:`pointcloud.RADAR_LAYOUT`).
 
@@ -299,8 +325,16 @@ class RecordingWriter:
         self.write(topic, t, M.image(self.store, t, frame_id, pixels, encoding))
 
     @_timed
-    def write_compressed_image(self, topic: str, frame_id: str, t: float, pixels: np.ndarray,
-                               fmt: str = "jpeg", encoding: str = "bgr8", quality: int = 90) -> None:
+    def write_compressed_image(
+        self,
+        topic: str,
+        frame_id: str,
+        t: float,
+        pixels: np.ndarray,
+        fmt: str = "jpeg",
+        encoding: str = "bgr8",
+        quality: int = 90,
+    ) -> None:
         """A ``sensor_msgs/CompressedImage`` (JPEG or PNG via Pillow) from an H×W×3 ``encoding`` array."""
         from seatwin.recording.images import encode_image
 
@@ -330,28 +364,29 @@ class RecordingWriter:
         t0 = _time.perf_counter()
         entries, topics = [], []
         for v in vessels:
-            names = self._vessel_names.get(v.name)
-            if names is None:
-                names = self._vessel_names[v.name] = self._truth_topics(v)
-            body, pose_topic, odom_topic, fix_topic = names
             fix = v.ownship and (v.llh is not None or self.origin is not None)
-            if v.ownship and not fix and not any("NavSatFix" in n for n in self.notes):
-                self.notes.append("no geodetic origin given: the ownship's NavSatFix was not recorded")
-            entries.append((v, body, fix))
-            topics += (pose_topic, POSE_STAMPED), (odom_topic, ODOMETRY)
-            if fix:
-                topics.append((fix_topic, NAV_SAT_FIX))
+            slot = self._vessel_slots.get((v.name, fix))
+            if slot is None:
+                slot = self._vessel_slot(v, fix)
+            entries.append((v, slot[0], fix))
+            topics += slot[1]
         if entries:
             topics.append((self.topics.tf, TF_MESSAGE))
         msgs = self._gt.step(t, self.topics.world_frame, entries, self.origin)
         self.timing["serialize_s"] += _time.perf_counter() - t0
         self._write_batch(t, [(topic, msgtype, data) for (topic, msgtype), data in zip(topics, msgs)])
 
-    def _truth_topics(self, v: M.VesselPose) -> tuple[str, str, str, str]:
-        """(body frame, pose, odometry and fix topics) of a vessel seen for the first time; its role noted."""
+    def _vessel_slot(self, v: M.VesselPose, fix: bool) -> tuple[str, tuple[tuple[str, str], ...]]:
+        """(body frame, (topic, type) of its pose, odometry and, with ``fix``, NavSatFix) of a vessel seen
+        for the first time (in this role); its role noted."""
         tp = self.topics
         self.vessels[v.name] = "ownship" if v.ownship else "target"
-        return tp.body(v.name), tp.topic("pose", vessel=v.name), tp.topic("odom", vessel=v.name), tp.topic("fix", vessel=v.name)
+        if v.ownship and not fix and not any("NavSatFix" in n for n in self.notes):
+            self.notes.append("no geodetic origin given: the ownship's NavSatFix was not recorded")
+        kinds = [("pose", POSE_STAMPED), ("odom", ODOMETRY)] + ([("fix", NAV_SAT_FIX)] if fix else [])
+        topics = tuple((tp.topic(kind, vessel=v.name), msgtype) for kind, msgtype in kinds)
+        slot = self._vessel_slots[(v.name, fix)] = (tp.body(v.name), topics)
+        return slot
 
     # ------------------------------------------------------------------ manifest and closing
     def _write_manifest(self, completed: bool = False) -> None:
@@ -383,10 +418,8 @@ class RecordingWriter:
             self.storage.close()
         except OSError as exc:
             self._error = f"{type(exc).__name__}: {exc}"
-            try:
+            with contextlib.suppress(Exception):
                 self.storage.abort()
-            except Exception:  # noqa: BLE001
-                pass
             completed = False
         self._write_manifest(completed=completed and self._error is None)
         if self._error and not error:
@@ -417,4 +450,4 @@ written out so that the first recorded step does not wait for scipy to load."""
 
 
 def _utcnow() -> str:
-    return dt.datetime.now(dt.timezone.utc).isoformat(timespec="seconds")
+    return dt.datetime.now(dt.UTC).isoformat(timespec="seconds")

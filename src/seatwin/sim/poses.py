@@ -15,12 +15,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from seatwin.geo import GeodeticOrigin, ned_to_llh_exact
 from seatwin.recording import VesselPose
-from seatwin.scenario import Scenario
-
-
-def _is_ownship(vessel: object) -> bool:
-    role = getattr(vessel, "role", None)
-    return getattr(role, "value", role) == "ownship"
+from seatwin.scenario import Role, Scenario
 
 
 def poses_from_scenario(scenario: Scenario, t: float) -> list[VesselPose]:
@@ -28,11 +23,18 @@ def poses_from_scenario(scenario: Scenario, t: float) -> list[VesselPose]:
     out = []
     for v in scenario.vessels:
         s = v.trajectory.state_at(t)
-        out.append(VesselPose(
-            name=v.name, north=float(s.north), east=float(s.east), heading=float(s.heading),
-            v_north=float(s.v_north), v_east=float(s.v_east), yaw_rate=float(s.yaw_rate),
-            ownship=_is_ownship(v),
-        ))
+        out.append(
+            VesselPose(
+                name=v.name,
+                north=float(s.north),
+                east=float(s.east),
+                heading=float(s.heading),
+                v_north=float(s.v_north),
+                v_east=float(s.v_east),
+                yaw_rate=float(s.yaw_rate),
+                ownship=v.role == Role.OWNSHIP,
+            )
+        )
     return out
 
 
@@ -57,9 +59,13 @@ class PoseTable:
         names, own, states, llh = [], [], [], []
         for v in scenario.vessels:
             s = v.trajectory.state_at(tt)
-            cols = np.column_stack([np.broadcast_to(np.asarray(a, float), tt.shape)
-                                    for a in (s.north, s.east, s.heading, s.v_north, s.v_east, s.yaw_rate)])
-            is_own = _is_ownship(v)
+            cols = np.column_stack(
+                [
+                    np.broadcast_to(np.asarray(a, float), tt.shape)
+                    for a in (s.north, s.east, s.heading, s.v_north, s.v_east, s.yaw_rate)
+                ]
+            )
+            is_own = v.role == Role.OWNSHIP
             names.append(v.name)
             own.append(is_own)
             states.append(cols)
@@ -75,6 +81,17 @@ class PoseTable:
         out = []
         for name, own, st, ll in zip(self.names, self.ownship, self.states, self.llh):
             n, e, h, vn, ve, r = st[k].tolist()
-            out.append(VesselPose(name=name, north=n, east=e, heading=h, v_north=vn, v_east=ve, yaw_rate=r,
-                                  ownship=own, llh=None if ll is None else tuple(ll[k].tolist())))
+            out.append(
+                VesselPose(
+                    name=name,
+                    north=n,
+                    east=e,
+                    heading=h,
+                    v_north=vn,
+                    v_east=ve,
+                    yaw_rate=r,
+                    ownship=own,
+                    llh=None if ll is None else tuple(ll[k].tolist()),
+                )
+            )
         return out

@@ -17,8 +17,8 @@ import os
 import struct
 from collections import defaultdict
 from collections.abc import Sequence
-from itertools import chain
 from io import BytesIO
+from itertools import chain
 
 from rosbags.interfaces import Connection
 from rosbags.rosbag2.storage_mcap import McapWriter, PendingChunk
@@ -136,8 +136,15 @@ class LeanMcapWriter(McapWriter):
         payload = self.compressor(bytes(buf)) if self.compression else buf
         n_payload = len(payload)
         comp = self.compression.encode()
-        head = (_U64.pack(chunk.message_start_time) + _U64.pack(chunk.message_end_time) + _U64.pack(size)
-                + _U32.pack(0) + _U32.pack(len(comp)) + comp + _U64.pack(n_payload))
+        head = (
+            _U64.pack(chunk.message_start_time)
+            + _U64.pack(chunk.message_end_time)
+            + _U64.pack(size)
+            + _U32.pack(0)
+            + _U32.pack(len(comp))
+            + comp
+            + _U64.pack(n_payload)
+        )
         out = self.bio
         chunk_start = out.tell()
         out.write(b"\x06" + _U64.pack(len(head) + n_payload) + head)

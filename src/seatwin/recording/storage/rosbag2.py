@@ -35,8 +35,17 @@ VERSION = 9
 """rosbag2 bag format version written."""
 
 _ZERO = QosTime(0, 0)
-LATCHED_QOS = Qos(QosHistory.KEEP_LAST, 1, QosReliability.RELIABLE, QosDurability.TRANSIENT_LOCAL,
-                  _ZERO, _ZERO, QosLiveliness.AUTOMATIC, _ZERO, False)
+LATCHED_QOS = Qos(
+    QosHistory.KEEP_LAST,
+    1,
+    QosReliability.RELIABLE,
+    QosDurability.TRANSIENT_LOCAL,
+    _ZERO,
+    _ZERO,
+    QosLiveliness.AUTOMATIC,
+    _ZERO,
+    False,
+)
 """The QoS a latched topic (``/tf_static``) is offered with: keep last 1, reliable, transient local."""
 
 _IDL_HEAD = "=" * 80 + "\nIDL: "
@@ -54,7 +63,6 @@ class Rosbag2Storage(BagStorage):
         self.counts: dict[int, int] = {}
         self.min_timestamp = 2**63 - 1
         self.max_timestamp = 0
-        self._msgtypes: set[str] = set()
         self._definitions: dict[str, tuple[MessageDefinition, str]] = {}
         self.writer: Any = None
 
@@ -72,15 +80,21 @@ class Rosbag2Storage(BagStorage):
         return d
 
     def add_connection(self, topic: str, msgtype: str, *, latched: bool = False) -> Connection:
+        new_type = msgtype not in self._definitions
         msgdef, digest = self._definition(msgtype)
         qos = [LATCHED_QOS] if latched else []
         conn = Connection(
-            id=len(self.connections) + 1, topic=topic, msgtype=msgtype, msgdef=msgdef, digest=digest, msgcount=0,
-            ext=ConnectionExtRosbag2(serialization_format="cdr", offered_qos_profiles=qos), owner=self,
+            id=len(self.connections) + 1,
+            topic=topic,
+            msgtype=msgtype,
+            msgdef=msgdef,
+            digest=digest,
+            msgcount=0,
+            ext=ConnectionExtRosbag2(serialization_format="cdr", offered_qos_profiles=qos),
+            owner=self,
         )
-        if msgtype not in self._msgtypes:
+        if new_type:  # the schema, once per message type
             self.writer.add_msgtype(conn)
-            self._msgtypes.add(msgtype)
         self.writer.add_connection(conn, dump_yaml(dump_qos_v9(qos)).strip())
         self.connections.append(conn)
         self.counts[conn.id] = 0
@@ -133,8 +147,14 @@ class Rosbag2Storage(BagStorage):
             ],
             "compression_format": "",
             "compression_mode": "",
-            "files": [{"path": name, "starting_time": {"nanoseconds_since_epoch": start},
-                       "duration": {"nanoseconds": duration}, "message_count": count}],
+            "files": [
+                {
+                    "path": name,
+                    "starting_time": {"nanoseconds_since_epoch": start},
+                    "duration": {"nanoseconds": duration},
+                    "message_count": count,
+                }
+            ],
             "custom_data": None,
             "ros_distro": "rosbags",
         }
