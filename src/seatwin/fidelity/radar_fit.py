@@ -30,10 +30,11 @@ def radar_observations(recording: Path, truth: str | None, base: RadarConfig, fi
     else:
         from seatwin.evaluation import load_truth
         from seatwin.perception.from_recording import scans_from_recording
+        from seatwin.pipeline.track import vessel_truth
         from seatwin.recording import open_bag
 
         with open_bag(recording) as rec:
-            scans = list(scans_from_recording(rec, ("radar",)).scans)
+            scans = list(scans_from_recording(rec, ("radar",), truth=vessel_truth(rec)).scans)
         if not scans:
             raise InputError(recording, "no radar scans in the recording")
         ts = load_truth(truth if truth else recording)

@@ -58,13 +58,13 @@ class RecordingScans:
     ownship: str | None = None
 
 
-def _ownship(rec: Any) -> OwnshipTrajectory | None:
-    from seatwin.evaluation.truth import recording_truth
-
-    try:
-        truth = recording_truth(rec)
-    except InputError:
-        return None
+def _ownship(rec: Any, truth: dict[str, Any] | None) -> OwnshipTrajectory | None:
+    """The ownship's trajectory from ``truth`` (vessel → truth), else from the bag's own ground-truth topics."""
+    if truth is None:
+        try:
+            truth = rec.ground_truth()
+        except InputError:
+            return None
     own = [v for v in truth.values() if v.ownship]
     if not own:
         return None
@@ -82,8 +82,13 @@ def scans_from_recording(
     mask: WaterMask | None = None,
     lidar: LidarClustering | None = None,
     radar: RadarPlots | None = None,
+    truth: dict[str, Any] | None = None,
 ) -> RecordingScans:
-    """Scans of the wanted ``sensors`` from an open :class:`seatwin.recording.Recording`."""
+    """Scans of the wanted ``sensors`` from an open :class:`seatwin.recording.Recording`.
+
+    ``truth`` (vessel name → truth with ``ownship``, ``time``, ``north``…; e.g.
+    :func:`seatwin.evaluation.truth.recording_truth`) poses the sensors; default: the bag's own topics.
+    """
     for s in sensors:
         if s not in SENSORS:
             raise ParameterError("sensors", f"unknown sensor {s!r}; expected some of {', '.join(SENSORS)}")
@@ -103,7 +108,7 @@ def scans_from_recording(
                                    f"{sorted(rec.topics)}")
     total = sum(rec.topics[t].count for t in wanted)
     mounts = {st.child: Mount.from_quaternion(st.translation, st.rotation) for st in rec.static_transforms()}
-    own = _ownship(rec)
+    own = _ownship(rec, truth)
 
     def pose_for(frame_id: str, t: float) -> SensorPose:
         if own is None:

@@ -90,6 +90,16 @@ def _hint_path(value: object, run_dir: Path | None) -> str | None:
     return str(p if p.is_absolute() or run_dir is None else run_dir / p)
 
 
+def vessel_truth(rec: Any) -> dict[str, Any] | None:
+    """Every vessel's truth of an open recording (its topics, else the scenario beside it); None if it has none."""
+    from seatwin.evaluation.truth import recording_truth
+
+    try:
+        return recording_truth(rec)
+    except InputError:
+        return None
+
+
 def track_recording(recording: str | Path, options: TrackOptions | None = None, *,
                     progress: Callable[[int, int], None] | None = None, **changes: Any) -> TrackingResult:
     """Track ``recording`` (run directory, rosbag2 directory, .mcap/.db3/.bag) with ``options`` (+ field ``changes``).
@@ -127,7 +137,7 @@ def track_recording(recording: str | Path, options: TrackOptions | None = None, 
             if s != "camera":
                 cfg.sensor(s)  # the tuning must cover every sensor used
         found = scans_from_recording(rec, wanted, mask=mask, lidar=LidarClustering(eps=options.eps, min_points=options.min_points),
-                                     radar=radar)
+                                     radar=radar, truth=vessel_truth(rec))
         done = 0
 
         def advance(_scan: Scan) -> None:
