@@ -106,8 +106,10 @@ def main() -> None:
         out[f"{key}_cost_vs_raycast"] = round(best[name]["sweep"] / best["raycast"]["sweep"], 2)
         out[f"{key}_cost_vs_raycast_no_drop"] = round(best[name]["sweep0"] / best["raycast"]["sweep0"], 2)
     for name, b in best.items():
-        print(f"{name:20s} sweep {1e3 * b['sweep'] / len(starts):7.2f} ms  no drop {1e3 * b['sweep0'] / len(starts):7.2f} ms  "
-              f"range model alone {ranged / b['range'] / 1e6:6.2f} Mbeams/s")
+        print(
+            f"{name:20s} sweep {1e3 * b['sweep'] / len(starts):7.2f} ms  no drop {1e3 * b['sweep0'] / len(starts):7.2f} ms  "
+            f"range model alone {ranged / b['range'] / 1e6:6.2f} Mbeams/s"
+        )
     print(json.dumps(out))
 
 

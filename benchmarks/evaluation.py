@@ -72,16 +72,37 @@ def real_comparison(seed: int, gate: float) -> dict:
     out: dict = {"gate_m": gate, "tracking_s": round(t_track, 2), "n_scans": int(len(run_real.scan_times))}
     for name, run in (("real", run_real), ("synthetic", run_synt)):
         s = evaluate(run, truth, gate=gate).summaries[0]
-        out[f"evaluate_{name}"] = {k: getattr(s, k) for k in ("coverage", "n_valid", "track_switches", "track_losses",
-                                                              "rmse_position", "anees", "anees_lower", "anees_upper",
-                                                              "anees_verdict")}
+        out[f"evaluate_{name}"] = {
+            k: getattr(s, k)
+            for k in (
+                "coverage",
+                "n_valid",
+                "track_switches",
+                "track_losses",
+                "rmse_position",
+                "anees",
+                "anees_lower",
+                "anees_upper",
+                "anees_verdict",
+            )
+        }
     table = {}
     for both in ("never", "zero", "skip"):
         opts = CompareOptions(gate=gate, both_missing=both, time_tolerance=0.05)
         c = compare(run_real, run_synt, truth, "joyride", opts).targets[0]
-        table[both] = {k: getattr(c, k) for k in ("ahed_standard", "ahed_printed", "n_common", "n_only_real",
-                                                  "n_only_synthetic", "n_both_missing", "fraction_only_one",
-                                                  "mean_covdiff")}
+        table[both] = {
+            k: getattr(c, k)
+            for k in (
+                "ahed_standard",
+                "ahed_printed",
+                "n_common",
+                "n_only_real",
+                "n_only_synthetic",
+                "n_both_missing",
+                "fraction_only_one",
+                "mean_covdiff",
+            )
+        }
     out["compare"] = table
     c = table["never"]
     if c["ahed_standard"] is not None:
@@ -125,11 +146,20 @@ def timing(n: int = 100_000, repeats: int = 3) -> dict:
             s = np.sqrt(scale)
             h_naive = naive_hed(m1[:1000] * s, p1[:1000] * scale, m2[:1000] * s, p2[:1000] * scale)
             h_ours = hellinger(m1[:1000] * s, p1[:1000] * scale, m2[:1000] * s, p2[:1000] * scale)
-            bad[f"{scale:g}"] = {"naive_nonfinite": int(np.count_nonzero(~np.isfinite(h_naive))),
-                                 "ours_nonfinite": int(np.count_nonzero(~np.isfinite(h_ours))),
-                                 "ours_max_err_vs_unscaled": float(np.max(np.abs(h_ours - unscaled)))}
-    return {"pairs": n, "ours_s": round(ours, 4), "naive_s": round(naive, 4), "ratio_to_naive": round(ours / naive, 2),
-            "pairs_per_s": round(n / ours), "max_abs_diff_vs_naive": agree, "extreme_scales": bad}
+            bad[f"{scale:g}"] = {
+                "naive_nonfinite": int(np.count_nonzero(~np.isfinite(h_naive))),
+                "ours_nonfinite": int(np.count_nonzero(~np.isfinite(h_ours))),
+                "ours_max_err_vs_unscaled": float(np.max(np.abs(h_ours - unscaled))),
+            }
+    return {
+        "pairs": n,
+        "ours_s": round(ours, 4),
+        "naive_s": round(naive, 4),
+        "ratio_to_naive": round(ours / naive, 2),
+        "pairs_per_s": round(n / ours),
+        "max_abs_diff_vs_naive": agree,
+        "extreme_scales": bad,
+    }
 
 
 def main() -> None:

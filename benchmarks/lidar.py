@@ -12,8 +12,9 @@ The last line is JSON: ``beams_per_s`` and ``ratio_to_bare_cast`` at the default
 rays the baseline casts), ``ratio_to_bare_cast_of_kept_rays`` (baseline: only the rays the
 pipeline casts), and the same with no ray drop (``*_no_drop``: exactly the same rays on
 both sides). ``*_batched`` figures range ``--batch`` consecutive sweeps per ``Lidar.sweeps`` call (same
-points, per-call overhead shared), as a recording run does. Each sweep is timed ``--repeats`` times for each of the four, interleaved, and the best
-time per sweep is kept (robust to other processes sharing the cores).
+points, per-call overhead shared), as a recording run does. Each sweep is timed ``--repeats`` times
+for each of the four, interleaved, and the best time per sweep is kept (robust to other processes
+sharing the cores).
 
     .venv/bin/python benchmarks/lidar.py [--sweeps 60] [--repeats 3]
 """
@@ -25,11 +26,16 @@ import json
 import os
 import platform
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+if TYPE_CHECKING:
+    from seatwin.scenario.model import Scenario
+    from seatwin.sensors.lidar_config import LidarConfig
 
-def build(seed: int = 0):
+
+def build(seed: int = 0) -> Scenario:
     from seatwin.scenario.model import Role, Scenario, Trajectory, Vessel
 
     t = 1.6e9 + np.arange(0.0, 30.01, 0.1)
@@ -97,7 +103,7 @@ def main() -> None:
             f.result()
         return time.perf_counter() - t0
 
-    def pipe(k: int, config) -> tuple[float, int]:
+    def pipe(k: int, config: LidarConfig) -> tuple[float, int]:
         lidar.config = config
         t0 = time.perf_counter()
         n = len(lidar.sweep(starts[k], k))
@@ -105,7 +111,7 @@ def main() -> None:
         lidar.config = cfg
         return dt, n
 
-    def pipe_batch(j: int, config) -> float:
+    def pipe_batch(j: int, config: LidarConfig) -> float:
         lidar.config = config
         ks = list(range(j * args.batch, (j + 1) * args.batch))
         t0 = time.perf_counter()

@@ -51,14 +51,18 @@ def main() -> None:
     t0 = time.perf_counter()
     plots = sum(len(scan) for *_, scan in frames([sensor], float(times[0]), float(times[-1]) + 1.0))
     full = (time.perf_counter() - t0) / len(times)
-    print(json.dumps({
-        "rays_per_scan": int(len(d)),
-        "cast_rebuild_s": rebuild,
-        "cast_scene_caster_s": scene_cast,
-        "speedup": rebuild / scene_cast,
-        "full_scan_s": full,
-        "plots_per_scan": plots / len(times),
-    }))
+    print(
+        json.dumps(
+            {
+                "rays_per_scan": int(len(d)),
+                "cast_rebuild_s": rebuild,
+                "cast_scene_caster_s": scene_cast,
+                "speedup": rebuild / scene_cast,
+                "full_scan_s": full,
+                "plots_per_scan": plots / len(times),
+            }
+        )
+    )
 
 
 if __name__ == "__main__":

@@ -34,9 +34,9 @@ import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from seatwin.perception import MeasurementKind  # noqa: E402
+from seatwin.perception import MeasurementKind, Scan  # noqa: E402
 from seatwin.tracking import JIPDATracker, TrackerConfig  # noqa: E402
-from seatwin.tracking.simulate import simulate  # noqa: E402
+from seatwin.tracking.simulate import SimulatedRun, simulate  # noqa: E402
 
 AREA = (-500.0, 500.0, -500.0, 500.0)
 Q, R, PD, PG = 0.3, 9.0, 0.9, 0.99
@@ -44,18 +44,35 @@ Q, R, PD, PG = 0.3, 9.0, 0.9, 0.99
 
 def config(clutter_mean: float) -> TrackerConfig:
     return TrackerConfig(
-        name="bench", q_north=Q, q_east=Q, gate_g=None, gate_probability=PG,
-        sensors={"radar": dict(r_range=R, r_bearing=1e-4, r_cartesian=R, p_detect=PD,
-                               clutter_density=max(clutter_mean, 0.1) / 1000.0**2)},
+        name="bench",
+        q_north=Q,
+        q_east=Q,
+        gate_g=None,
+        gate_probability=PG,
+        sensors={
+            "radar": dict(
+                r_range=R, r_bearing=1e-4, r_cartesian=R, p_detect=PD, clutter_density=max(clutter_mean, 0.1) / 1000.0**2
+            )
+        },
     )
 
 
-def problem(n_scans: int, clutter_mean: float):
-    return simulate(n_scans=n_scans, dt=1.0, n_targets=3, q=Q, r_cartesian=R, kind=MeasurementKind.CARTESIAN,
-                    p_detect=PD, clutter_mean=clutter_mean, area=AREA, seed=11)
+def problem(n_scans: int, clutter_mean: float) -> SimulatedRun:
+    return simulate(
+        n_scans=n_scans,
+        dt=1.0,
+        n_targets=3,
+        q=Q,
+        r_cartesian=R,
+        kind=MeasurementKind.CARTESIAN,
+        p_detect=PD,
+        clutter_mean=clutter_mean,
+        area=AREA,
+        seed=11,
+    )
 
 
-def time_ours(scans, cfg: TrackerConfig, repeats: int = 7) -> float:
+def time_ours(scans: list[Scan], cfg: TrackerConfig, repeats: int = 7) -> float:
     """Best seconds per scan over ``repeats`` fresh runs."""
     best = np.inf
     for _ in range(repeats):
@@ -67,7 +84,7 @@ def time_ours(scans, cfg: TrackerConfig, repeats: int = 7) -> float:
     return best
 
 
-def time_stonesoup(scans, truth0: np.ndarray, clutter_mean: float) -> float:
+def time_stonesoup(scans: list[Scan], truth0: np.ndarray, clutter_mean: float) -> float:
     """Seconds per scan of Stone Soup's JPDA on the same scans (tracks given from the start)."""
     from scipy.stats import chi2
     from stonesoup.dataassociator.probability import JPDA
@@ -89,8 +106,9 @@ def time_stonesoup(scans, truth0: np.ndarray, clutter_mean: float) -> float:
     trans = CombinedLinearGaussianTransitionModel([ConstantVelocity(Q), ConstantVelocity(Q)])
     meas = LinearGaussian(4, (0, 2), np.eye(2) * R)
     predictor, updater = KalmanPredictor(trans), KalmanUpdater(meas)
-    hyp = PDAHypothesiser(predictor, updater, clutter_spatial_density=max(clutter_mean, 0.1) / 1000.0**2,
-                          prob_detect=PD, prob_gate=PG)
+    hyp = PDAHypothesiser(
+        predictor, updater, clutter_spatial_density=max(clutter_mean, 0.1) / 1000.0**2, prob_detect=PD, prob_gate=PG
+    )
     jpda = JPDA(DistanceGater(hyp, measure=Mahalanobis(), gate_threshold=float(np.sqrt(chi2.ppf(PG, 2)))))
     tracks = {Track([GaussianState(x.reshape(4, 1), np.diag([9.0, 4.0, 9.0, 4.0]), timestamp=t0)]) for x in truth0}
     base = scans[0].time
@@ -144,7 +162,9 @@ def main() -> dict:
 
 if __name__ == "__main__":
     res = main()
-    print(f"ours: {res['scans_per_s']} scans/s ({res['measurements_per_scan']} measurements/scan); "
-          f"Stone Soup JPDA: {res['stonesoup_scans_per_s']} scans/s; speed-up ×{res['speedup_vs_stonesoup']}")
+    print(
+        f"ours: {res['scans_per_s']} scans/s ({res['measurements_per_scan']} measurements/scan); "
+        f"Stone Soup JPDA: {res['stonesoup_scans_per_s']} scans/s; speed-up ×{res['speedup_vs_stonesoup']}"
+    )
     print("scans/s by mean clutter per scan:", res["clutter_scaling_scans_per_s"])
     print(json.dumps(res))

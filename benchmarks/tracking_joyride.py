@@ -59,9 +59,16 @@ def metrics(tracks: Tracks, truth: TruthSet, gate: float, t_from: float | None =
 
     if t_from is not None:
         keep = tracks.time >= t_from
-        tracks = type(tracks)(tracks.time[keep], tracks.track_id[keep], tracks.existence[keep], tracks.state[keep],
-                              tracks.covariance[keep], tracks.confirmed[keep],
-                              scan_times=tracks.scan_times[tracks.scan_times >= t_from], source=tracks.source)
+        tracks = type(tracks)(
+            tracks.time[keep],
+            tracks.track_id[keep],
+            tracks.existence[keep],
+            tracks.state[keep],
+            tracks.covariance[keep],
+            tracks.confirmed[keep],
+            scan_times=tracks.scan_times[tracks.scan_times >= t_from],
+            source=tracks.source,
+        )
     ev = evaluate(tracks, truth, gate=gate)
     s = ev.summaries[0]
     confirmed = sorted({int(i) for i in tracks.track_id[tracks.confirmed]})
@@ -96,8 +103,9 @@ def main(mat: Path) -> dict:
         t_half = float(t[len(t) // 2])
         bias, n_cal = calibrate_bearing_bias(mat)
         tuning = tmp / "joyride_calibrated.yaml"
-        tuning.write_text(yaml.safe_dump({"base": "joyride", "name": "joyride+bias",
-                                          "sensors": {"radar": {"bearing_bias": bias}}}))
+        tuning.write_text(
+            yaml.safe_dump({"base": "joyride", "name": "joyride+bias", "sensors": {"radar": {"bearing_bias": bias}}})
+        )
         cal = track_recording(rd, sensors=("radar",), tuning=str(tuning)).tracks
         result = {
             "uncalibrated_full": [metrics(base, truth, g) for g in (10.0, 50.0)],
@@ -111,8 +119,18 @@ def main(mat: Path) -> dict:
 
 
 def _table(result: dict) -> str:
-    keys = ["coverage", "rmse_position_m", "rmse_velocity_mps", "anees", "anees_bounds", "confirmed_tracks",
-            "target_tracks", "track_switches", "false_tracks", "scans"]
+    keys = [
+        "coverage",
+        "rmse_position_m",
+        "rmse_velocity_mps",
+        "anees",
+        "anees_bounds",
+        "confirmed_tracks",
+        "target_tracks",
+        "track_switches",
+        "false_tracks",
+        "scans",
+    ]
     lines = []
     for name in ("uncalibrated_full", "uncalibrated_second_half", "calibrated_second_half"):
         for m in result[name]:

@@ -168,10 +168,7 @@ def test_geo_is_a_leaf() -> None:
 
 def test_scenario_and_world_are_independent() -> None:
     bad = sorted(
-        f"{m} imports {t}"
-        for m, ts in graph().items()
-        for t in ts
-        if {package_of(m), package_of(t)} == {"scenario", "world"}
+        f"{m} imports {t}" for m, ts in graph().items() for t in ts if {package_of(m), package_of(t)} == {"scenario", "world"}
     )
     assert not bad  # the 2-D harbour layout both need lives below them, in seatwin.layout
 

@@ -80,8 +80,12 @@ def test_time_tolerance(truth, tracks_factory) -> None:
 def test_table_shape(truth, tracks_factory) -> None:
     real, synt = _runs(tracks_factory)
     table = comparison_table([compare(real, synt, truth, "synthetic"), compare(real, real, truth, "real")])
-    assert [(t["target"], t["tuning"]) for t in table["targets"]] == [("A", "synthetic"), ("B", "synthetic"),
-                                                                      ("A", "real"), ("B", "real")]
+    assert [(t["target"], t["tuning"]) for t in table["targets"]] == [
+        ("A", "synthetic"),
+        ("B", "synthetic"),
+        ("A", "real"),
+        ("B", "real"),
+    ]
     assert table["ahed_mean_by_tuning"]["real"] == pytest.approx(0.0, abs=1e-7)
     assert table["ahed_mean"] == pytest.approx(H_STD / 4)
     for key in ("ahed", "n_common", "n_only_real", "n_only_synthetic", "mean_covdiff"):

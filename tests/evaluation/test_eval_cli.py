@@ -20,11 +20,14 @@ T0 = 1.6e9
 def scenario_file(tmp_path: Path) -> Path:
     t = T0 + np.arange(0.0, 20.01, 0.1)
     z = np.zeros_like(t)
-    scen = Scenario("eval", [
-        Vessel("own", Role.OWNSHIP, Trajectory(t, z - 50.0, z, z)),
-        Vessel("A", Role.TARGET, Trajectory(t, (t - T0) * 1.0, z, z)),
-        Vessel("B", Role.TARGET, Trajectory(t, z, z + 100.0, z)),
-    ])
+    scen = Scenario(
+        "eval",
+        [
+            Vessel("own", Role.OWNSHIP, Trajectory(t, z - 50.0, z, z)),
+            Vessel("A", Role.TARGET, Trajectory(t, (t - T0) * 1.0, z, z)),
+            Vessel("B", Role.TARGET, Trajectory(t, z, z + 100.0, z)),
+        ],
+    )
     path, _ = save_scenario(scen, tmp_path / "scen.yaml")
     return path
 
@@ -33,8 +36,9 @@ def scenario_file(tmp_path: Path) -> Path:
 def track_files(tmp_path: Path, tracks_factory) -> tuple[Path, Path]:
     scans = [T0 + k for k in range(21)]
     real = tracks_factory([(T0 + k, 1, k + 0.5, 0.0) for k in range(0, 18)], scan_times=scans)
-    synt = tracks_factory([(T0 + k, 3, k - 0.5, 0.0) for k in range(2, 20)] + [(T0 + k, 4, 1.0, 99.0) for k in range(5, 10)],
-                          scan_times=scans)
+    synt = tracks_factory(
+        [(T0 + k, 3, k - 0.5, 0.0) for k in range(2, 20)] + [(T0 + k, 4, 1.0, 99.0) for k in range(5, 10)], scan_times=scans
+    )
     paths = tmp_path / "real.csv", tmp_path / "synt.csv"
     write_tracks(paths[0], real)
     write_tracks(paths[1], synt)
@@ -48,8 +52,17 @@ def test_evaluate_json(scenario_file: Path, track_files, tmp_path: Path, capsys)
     names = [t["target"] for t in data["targets"]]
     assert names == ["A", "B"]  # the ownship is excluded
     a = data["targets"][0]
-    for key in ("coverage", "first_time", "last_time", "track_switches", "rmse", "anees", "anees_lower", "anees_upper",
-                "n_valid"):
+    for key in (
+        "coverage",
+        "first_time",
+        "last_time",
+        "track_switches",
+        "rmse",
+        "anees",
+        "anees_lower",
+        "anees_upper",
+        "n_valid",
+    ):
         assert key in a
     assert a["n_valid"] == 18 and a["coverage"] == pytest.approx(18 / 21) and a["first_time"] == pytest.approx(T0)
     assert a["anees"] == pytest.approx(1.25)
@@ -59,8 +72,25 @@ def test_evaluate_json(scenario_file: Path, track_files, tmp_path: Path, capsys)
 def test_compare_json_two_tunings(scenario_file: Path, track_files, tmp_path: Path) -> None:
     out = tmp_path / "cmp.json"
     real, synt = map(str, track_files)
-    code = run(["compare", "--real", real, "--synthetic", synt, "--real", real, "--synthetic", real,
-                "--truth", str(scenario_file), "--tuning", "synthetic,real", "--json", str(out)])
+    code = run(
+        [
+            "compare",
+            "--real",
+            real,
+            "--synthetic",
+            synt,
+            "--real",
+            real,
+            "--synthetic",
+            real,
+            "--truth",
+            str(scenario_file),
+            "--tuning",
+            "synthetic,real",
+            "--json",
+            str(out),
+        ]
+    )
     assert code == 0
     data = json.loads(out.read_text())
     rows = {(t["target"], t["tuning"]): t for t in data["targets"]}
@@ -75,11 +105,14 @@ def test_compare_json_two_tunings(scenario_file: Path, track_files, tmp_path: Pa
         assert key in a
 
 
-@pytest.mark.parametrize(("extra", "needle"), [
-    (["--hellinger-form", "odd"], "--hellinger-form"),
-    (["--both-missing", "x"], "--both-missing"),
-    (["--tuning", "synthetic,real"], "already tracked with one tuning"),
-])
+@pytest.mark.parametrize(
+    ("extra", "needle"),
+    [
+        (["--hellinger-form", "odd"], "--hellinger-form"),
+        (["--both-missing", "x"], "--both-missing"),
+        (["--tuning", "synthetic,real"], "already tracked with one tuning"),
+    ],
+)
 def test_compare_bad_options(scenario_file: Path, track_files, extra: list[str], needle: str, capsys) -> None:
     real, synt = map(str, track_files)
     assert run(["compare", "--real", real, "--synthetic", synt, "--truth", str(scenario_file), *extra]) == 2
@@ -102,8 +135,10 @@ def test_compare_bad_recording(scenario_file: Path, track_files, tmp_path: Path,
     assert run(["compare", "--real", str(rec), "--synthetic", str(track_files[1]), "--truth", str(scenario_file)]) == 2
     err = capsys.readouterr().err
     assert "run.mcap" in err and err.count("\n") == 1
-    assert run(["compare", "--real", str(tmp_path / "absent"), "--synthetic", str(track_files[1]),
-                "--truth", str(scenario_file)]) == 2
+    assert (
+        run(["compare", "--real", str(tmp_path / "absent"), "--synthetic", str(track_files[1]), "--truth", str(scenario_file)])
+        == 2
+    )
     assert "no such track file" in capsys.readouterr().err
 
 
@@ -113,8 +148,26 @@ def test_compare_recordings_end_to_end_on_joyride(shared_data: Path, tmp_path: P
     run_dir = tmp_path / "joyride"
     assert run(["import", "joyride", str(shared_data / "joyride" / "joyride.mat"), "--out", str(run_dir)]) == 0
     out = tmp_path / "cmp.json"
-    assert run(["compare", "--real", str(run_dir), "--synthetic", str(run_dir), "--truth", str(run_dir),
-                "--tuning", "joyride", "--gate", "50", "--json", str(out)]) == 0
+    assert (
+        run(
+            [
+                "compare",
+                "--real",
+                str(run_dir),
+                "--synthetic",
+                str(run_dir),
+                "--truth",
+                str(run_dir),
+                "--tuning",
+                "joyride",
+                "--gate",
+                "50",
+                "--json",
+                str(out),
+            ]
+        )
+        == 0
+    )
     data = json.loads(out.read_text())
     (line,) = data["targets"]
     assert line["tuning"] == "joyride" and line["n_common"] > 100
@@ -126,21 +179,45 @@ def test_compare_recordings_end_to_end_on_joyride(shared_data: Path, tmp_path: P
 def test_compare_writes_report(scenario_file: Path, track_files, tmp_path: Path) -> None:
     real, synt = map(str, track_files)
     out = tmp_path / "rep"
-    assert run(["compare", "--real", real, "--synthetic", synt, "--truth", str(scenario_file), "--report", str(out),
-                "--map", "none", "--hellinger-form", "printed", "--both-missing", "zero"]) == 0
+    assert (
+        run(
+            [
+                "compare",
+                "--real",
+                real,
+                "--synthetic",
+                synt,
+                "--truth",
+                str(scenario_file),
+                "--report",
+                str(out),
+                "--map",
+                "none",
+                "--hellinger-form",
+                "printed",
+                "--both-missing",
+                "zero",
+            ]
+        )
+        == 0
+    )
     text = (out / "index.html").read_text()
     assert "AHED (printed)" in text and "<code>zero</code>" in text and 'src="data:image/png;base64,' in text
 
 
 def test_pairing_of_runs_and_tunings() -> None:
-    from seatwin.pipeline.compare import comparison_pairs as _pairs
     from seatwin.errors import InputError
+    from seatwin.pipeline.compare import comparison_pairs as _pairs
 
     assert _pairs(["a.csv"], ["b.csv"], []) == [("a.csv", "b.csv", None, "")]
-    assert _pairs(["a.csv", "c.csv"], ["b.csv", "d.csv"], []) == [("a.csv", "b.csv", None, "pair1"),
-                                                                  ("c.csv", "d.csv", None, "pair2")]
-    assert _pairs(["rec"], ["rec2"], ["synthetic", "real"]) == [("rec", "rec2", "synthetic", "synthetic"),
-                                                                ("rec", "rec2", "real", "real")]
+    assert _pairs(["a.csv", "c.csv"], ["b.csv", "d.csv"], []) == [
+        ("a.csv", "b.csv", None, "pair1"),
+        ("c.csv", "d.csv", None, "pair2"),
+    ]
+    assert _pairs(["rec"], ["rec2"], ["synthetic", "real"]) == [
+        ("rec", "rec2", "synthetic", "synthetic"),
+        ("rec", "rec2", "real", "real"),
+    ]
     with pytest.raises(InputError, match="as many"):
         _pairs(["a.csv"], [], [])
     with pytest.raises(InputError, match="2 tunings for 3"):

@@ -34,25 +34,29 @@ def _write(tmp_path: Path, body: str) -> Path:
 
 def _row(**over: str) -> str:
     vals = {c: "0" for c in COLUMNS}
-    vals.update({"time": "1.0", "track_id": "1", "existence": "0.9", "P00": "1", "P11": "1", "P22": "1", "P33": "1",
-                 "confirmed": "1"})
+    vals.update(
+        {"time": "1.0", "track_id": "1", "existence": "0.9", "P00": "1", "P11": "1", "P22": "1", "P33": "1", "confirmed": "1"}
+    )
     vals.update(over)
     return ",".join(vals[c] for c in COLUMNS)
 
 
-@pytest.mark.parametrize(("row", "needle"), [
-    (_row(north="abc"), "expected a number for north"),
-    (_row(P01="0.5"), "not symmetric"),
-    (_row(P22="0"), "diagonal must be positive"),
-    (_row(P01="2", P10="2"), "not positive semi-definite"),
-    (_row(confirmed="2"), "confirmed must be 0 or 1"),
-    (_row(existence="1.5"), "existence must lie in [0, 1]"),
-    (_row(time="nan"), "expected a finite number for time"),
-    (_row(track_id="x"), "integer track_id"),
-    (_row(track_id="-5"), "track_id must be >= 0"),
-    ("1.0,-1,0.5" + "," * (len(COLUMNS) - 3), "must leave existence empty"),
-    (_row() + "\n" + _row(), "appears twice"),
-])
+@pytest.mark.parametrize(
+    ("row", "needle"),
+    [
+        (_row(north="abc"), "expected a number for north"),
+        (_row(P01="0.5"), "not symmetric"),
+        (_row(P22="0"), "diagonal must be positive"),
+        (_row(P01="2", P10="2"), "not positive semi-definite"),
+        (_row(confirmed="2"), "confirmed must be 0 or 1"),
+        (_row(existence="1.5"), "existence must lie in [0, 1]"),
+        (_row(time="nan"), "expected a finite number for time"),
+        (_row(track_id="x"), "integer track_id"),
+        (_row(track_id="-5"), "track_id must be >= 0"),
+        ("1.0,-1,0.5" + "," * (len(COLUMNS) - 3), "must leave existence empty"),
+        (_row() + "\n" + _row(), "appears twice"),
+    ],
+)
 def test_bad_rows_name_file_line_and_field(tmp_path: Path, row: str, needle: str) -> None:
     path = _write(tmp_path, row)
     with pytest.raises(InputError) as err:

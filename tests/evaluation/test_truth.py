@@ -15,10 +15,13 @@ from seatwin.scenario import Role, Scenario, Trajectory, Vessel
 def _scenario() -> Scenario:
     t = 1.6e9 + np.arange(0.0, 10.01, 0.1)
     z = np.zeros_like(t)
-    return Scenario("s", [
-        Vessel("own", Role.OWNSHIP, Trajectory(t, z, z - 30.0, z)),
-        Vessel("A", Role.TARGET, Trajectory(t, 2.0 * (t - t[0]), z + 5.0, z)),
-    ])
+    return Scenario(
+        "s",
+        [
+            Vessel("own", Role.OWNSHIP, Trajectory(t, z, z - 30.0, z)),
+            Vessel("A", Role.TARGET, Trajectory(t, 2.0 * (t - t[0]), z + 5.0, z)),
+        ],
+    )
 
 
 def test_numerical_velocity_and_span() -> None:

@@ -42,8 +42,24 @@ def test_block_bootstrap_interval_contains_the_mean():
 
 def test_fidelity_cli_on_toy_data(toy_mat, tmp_path):
     out = tmp_path / "fid"
-    code = run(["fidelity", "joyride", str(toy_mat), "--out", str(out), "--fit-on", "first-half", "--seeds", "2",
-                "--boot", "50", "--fit-boot", "5", "--no-html"])
+    code = run(
+        [
+            "fidelity",
+            "joyride",
+            str(toy_mat),
+            "--out",
+            str(out),
+            "--fit-on",
+            "first-half",
+            "--seeds",
+            "2",
+            "--boot",
+            "50",
+            "--fit-boot",
+            "5",
+            "--no-html",
+        ]
+    )
     assert code == 0
     j = json.loads((out / "fidelity.json").read_text())
     for key in ("ahed", "ahed_ci", "n_common", "n_only_real", "n_only_synthetic", "fit_on", "seeds"):
@@ -73,8 +89,25 @@ def test_fidelity_bad_input(tmp_path, capsys):
 @pytest.mark.slow
 def test_fidelity_real_joyride(shared_data, tmp_path):
     out = tmp_path / "real"
-    code = run(["fidelity", "joyride", str(shared_data / "joyride" / "joyride.mat"), "--out", str(out),
-                "--seeds", "1", "--agents", "jipda", "--boot", "50", "--fit-on", "first-half", "--fit-boot", "5"])
+    code = run(
+        [
+            "fidelity",
+            "joyride",
+            str(shared_data / "joyride" / "joyride.mat"),
+            "--out",
+            str(out),
+            "--seeds",
+            "1",
+            "--agents",
+            "jipda",
+            "--boot",
+            "50",
+            "--fit-on",
+            "first-half",
+            "--fit-boot",
+            "5",
+        ]
+    )
     assert code == 0
     j = json.loads((out / "fidelity.json").read_text())
     assert 0.0 < j["ahed"] < 1.0
@@ -86,8 +119,30 @@ def test_calibrate_bias_needs_a_fit_and_sets_the_tracker_bias(toy_mat, tmp_path,
     assert run(["fidelity", "joyride", str(toy_mat), "--out", str(tmp_path / "x"), "--calibrate-bias"]) == 2
     assert "calibrate-bias" in capsys.readouterr().err
     out = tmp_path / "cal"
-    assert run(["fidelity", "joyride", str(toy_mat), "--out", str(out), "--fit-on", "all", "--calibrate-bias",
-                "--seeds", "1", "--agents", "gnn", "--boot", "20", "--fit-boot", "0", "--no-html"]) == 0
+    assert (
+        run(
+            [
+                "fidelity",
+                "joyride",
+                str(toy_mat),
+                "--out",
+                str(out),
+                "--fit-on",
+                "all",
+                "--calibrate-bias",
+                "--seeds",
+                "1",
+                "--agents",
+                "gnn",
+                "--boot",
+                "20",
+                "--fit-boot",
+                "0",
+                "--no-html",
+            ]
+        )
+        == 0
+    )
     j = json.loads((out / "fidelity.json").read_text())
     assert j["agent"] == "gnn" and j["fit_on"] == "all"
     assert j["tracker_bearing_bias_deg"] == pytest.approx(j["models"]["fitted"]["radar"]["noise"]["bearing_bias_deg"])
@@ -95,8 +150,24 @@ def test_calibrate_bias_needs_a_fit_and_sets_the_tracker_bias(toy_mat, tmp_path,
 
 @pytest.mark.slow
 def test_fidelity_reruns_are_identical(toy_mat, tmp_path):
-    args = ["fidelity", "joyride", str(toy_mat), "--fit-on", "first-half", "--seeds", "1", "--agents", "gnn",
-            "--boot", "20", "--fit-boot", "3", "--no-html", "--seed", "4"]
+    args = [
+        "fidelity",
+        "joyride",
+        str(toy_mat),
+        "--fit-on",
+        "first-half",
+        "--seeds",
+        "1",
+        "--agents",
+        "gnn",
+        "--boot",
+        "20",
+        "--fit-boot",
+        "3",
+        "--no-html",
+        "--seed",
+        "4",
+    ]
     assert run([*args, "--out", str(tmp_path / "a")]) == 0
     assert run([*args, "--out", str(tmp_path / "b")]) == 0
     assert (tmp_path / "a" / "fidelity.json").read_text() == (tmp_path / "b" / "fidelity.json").read_text()
@@ -121,11 +192,19 @@ def test_replica_subset_draws_as_in_the_whole_recording():
     assert exc.value.param == "indices"
 
 
-@pytest.mark.parametrize(("changes", "param"), [
-    ({"fit_on": "sideways"}, "fit_on"), ({"calibrate_bias": True}, "calibrate_bias"), ({"seeds": 0}, "seeds"),
-    ({"agents": ()}, "agents"), ({"agents": ("jipda", "kalman")}, "agents"), ({"agents": ("gnn", "gnn")}, "agents"),
-    ({"clutter": "rain"}, "clutter"), ({"n_boot": 0}, "n_boot"),
-])
+@pytest.mark.parametrize(
+    ("changes", "param"),
+    [
+        ({"fit_on": "sideways"}, "fit_on"),
+        ({"calibrate_bias": True}, "calibrate_bias"),
+        ({"seeds": 0}, "seeds"),
+        ({"agents": ()}, "agents"),
+        ({"agents": ("jipda", "kalman")}, "agents"),
+        ({"agents": ("gnn", "gnn")}, "agents"),
+        ({"clutter": "rain"}, "clutter"),
+        ({"n_boot": 0}, "n_boot"),
+    ],
+)
 def test_fidelity_options_name_the_bad_parameter(changes, param):
     from seatwin.fidelity import FidelityOptions
 

@@ -23,10 +23,19 @@ def test_gnn_assign_hand_example():
 
 
 def _config() -> TrackerConfig:
-    return TrackerConfig.model_validate({
-        "q_north": 0.3, "q_east": 0.3, "gate_g": None, "gate_probability": 0.99, "v_max": 10.0, "init_margin": 5.0,
-        "sensors": {"radar": {"r_range": 4.0, "r_bearing": 1e-4, "r_cartesian": 4.0, "p_detect": 0.9, "clutter_density": 1e-5}},
-    })
+    return TrackerConfig.model_validate(
+        {
+            "q_north": 0.3,
+            "q_east": 0.3,
+            "gate_g": None,
+            "gate_probability": 0.99,
+            "v_max": 10.0,
+            "init_margin": 5.0,
+            "sensors": {
+                "radar": {"r_range": 4.0, "r_bearing": 1e-4, "r_cartesian": 4.0, "p_detect": 0.9, "clutter_density": 1e-5}
+            },
+        }
+    )
 
 
 def test_gnn_tracks_simulated_targets_like_jipda():

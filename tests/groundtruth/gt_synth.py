@@ -66,7 +66,7 @@ def sample_times(t0: float, duration: float, rate_hz: float, offset: float = 0.0
 
 
 def _iso(t: float) -> str:
-    return dt.datetime.fromtimestamp(t, dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%S.%f")[:-3] + "Z"
+    return dt.datetime.fromtimestamp(t, dt.UTC).strftime("%Y-%m-%dT%H:%M:%S.%f")[:-3] + "Z"
 
 
 def write_gpx(path: Path, t, lat, lon, h) -> Path:
@@ -94,7 +94,7 @@ def _ddmm(value: float, deg_digits: int, pos: str, neg: str) -> tuple[str, str]:
 
 
 def gga(t: float, lat: float, lon: float, h: float, quality: int = 4, talker: str = "GP") -> str:
-    tod = dt.datetime.fromtimestamp(round(t, 2), dt.timezone.utc)
+    tod = dt.datetime.fromtimestamp(round(t, 2), dt.UTC)
     hms = f"{tod:%H%M%S}.{tod.microsecond // 10000:02d}"
     la, ns = _ddmm(lat, 2, "N", "S")
     lo, ew = _ddmm(lon, 3, "E", "W")
@@ -103,7 +103,7 @@ def gga(t: float, lat: float, lon: float, h: float, quality: int = 4, talker: st
 
 
 def rmc(t: float, lat: float, lon: float) -> str:
-    tod = dt.datetime.fromtimestamp(round(t, 2), dt.timezone.utc)
+    tod = dt.datetime.fromtimestamp(round(t, 2), dt.UTC)
     hms = f"{tod:%H%M%S}.{tod.microsecond // 10000:02d}"
     la, ns = _ddmm(lat, 2, "N", "S")
     lo, ew = _ddmm(lon, 3, "E", "W")
@@ -138,9 +138,11 @@ def write_pos(path: Path, t_utc, lat, lon, h, q=None, week_tow: bool = False, sy
             week = int(x // 604_800)
             ts = f"{week:4d} {x - week * 604_800:11.3f}"
         else:
-            d = dt.datetime.fromtimestamp(round(g, 3), dt.timezone.utc)
+            d = dt.datetime.fromtimestamp(round(g, 3), dt.UTC)
             ts = f"{d:%Y/%m/%d %H:%M:%S}.{d.microsecond // 1000:03d}"
-        rows.append(f"{ts} {a:14.9f} {b:14.9f} {c:10.4f} {int(qq):3d}  12   0.0050   0.0040   0.0110  -0.0010   0.0010  -0.0030   1.00  999.9")
+        rows.append(
+            f"{ts} {a:14.9f} {b:14.9f} {c:10.4f} {int(qq):3d}  12   0.0050   0.0040   0.0110  -0.0010   0.0010  -0.0030   1.00  999.9"
+        )
     path.write_text("\n".join(head + rows) + "\n")
     return path
 

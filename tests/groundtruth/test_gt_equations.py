@@ -60,7 +60,9 @@ def test_velocity_central_hand_values_and_smoothing() -> None:
 
 
 def test_course_over_ground() -> None:
-    np.testing.assert_allclose(course_over_ground([1.0, 0.0, -1.0, 0.0], [0.0, 1.0, 0.0, -1.0]), [0.0, math.pi / 2, -math.pi, -math.pi / 2])
+    np.testing.assert_allclose(
+        course_over_ground([1.0, 0.0, -1.0, 0.0], [0.0, 1.0, 0.0, -1.0]), [0.0, math.pi / 2, -math.pi, -math.pi / 2]
+    )
 
 
 def test_leap_seconds() -> None:

@@ -98,13 +98,42 @@ PT = '<trkpt lat="{lat}" lon="10.39"><ele>1</ele><time>{time}</time></trkpt>\n'
     ("body", "match", "where"),
     [
         ("<trkpt lat='63'", "not well-formed XML", "line 2"),
-        (PT.format(lat="63.43", time="2020-09-15T10:00:00Z") + PT.format(lat="abc", time="2020-09-15T10:00:01Z"), "malformed GPX", "line 3"),
-        (PT.format(lat="63.43", time="2020-09-15T10:00:00Z") + '<trkpt lat="63.4"><time>2020-09-15T10:00:01Z</time></trkpt>\n', "malformed GPX", None),
-        (PT.format(lat="63.43", time="2020-09-15T10:00:00Z") + PT.format(lat="63.43", time="garbage"), "without a valid <time>", "line 3"),
-        (PT.format(lat="63.43", time="2020-09-15T10:00:00Z") + '<trkpt lat="63.4" lon="10.3"><time>2020-09-15T10:00:01Z</time></trkpt>\n', "without <ele>", "line 3"),
-        (PT.format(lat="63.43", time="2020-09-15T10:00:00Z") + PT.format(lat="63.44", time="2020-09-15T10:00:00Z"), "duplicated time", "line 3"),
-        (PT.format(lat="63.43", time="2020-09-15T10:00:05Z") + PT.format(lat="63.44", time="2020-09-15T10:00:00Z"), "decreasing", "line 3"),
-        (PT.format(lat="63.43", time="2020-09-15T10:00:00Z") + PT.format(lat="nan", time="2020-09-15T10:00:01Z"), "not a finite", "line 3"),
+        (
+            PT.format(lat="63.43", time="2020-09-15T10:00:00Z") + PT.format(lat="abc", time="2020-09-15T10:00:01Z"),
+            "malformed GPX",
+            "line 3",
+        ),
+        (
+            PT.format(lat="63.43", time="2020-09-15T10:00:00Z") + '<trkpt lat="63.4"><time>2020-09-15T10:00:01Z</time></trkpt>\n',
+            "malformed GPX",
+            None,
+        ),
+        (
+            PT.format(lat="63.43", time="2020-09-15T10:00:00Z") + PT.format(lat="63.43", time="garbage"),
+            "without a valid <time>",
+            "line 3",
+        ),
+        (
+            PT.format(lat="63.43", time="2020-09-15T10:00:00Z")
+            + '<trkpt lat="63.4" lon="10.3"><time>2020-09-15T10:00:01Z</time></trkpt>\n',
+            "without <ele>",
+            "line 3",
+        ),
+        (
+            PT.format(lat="63.43", time="2020-09-15T10:00:00Z") + PT.format(lat="63.44", time="2020-09-15T10:00:00Z"),
+            "duplicated time",
+            "line 3",
+        ),
+        (
+            PT.format(lat="63.43", time="2020-09-15T10:00:05Z") + PT.format(lat="63.44", time="2020-09-15T10:00:00Z"),
+            "decreasing",
+            "line 3",
+        ),
+        (
+            PT.format(lat="63.43", time="2020-09-15T10:00:00Z") + PT.format(lat="nan", time="2020-09-15T10:00:01Z"),
+            "not a finite",
+            "line 3",
+        ),
         (PT.format(lat="63.43", time="2020-09-15T10:00:00Z"), "at least 2 fixes", None),
         ("", "no track points", None),
     ],
@@ -298,7 +327,13 @@ def test_csv_valid(tmp_path: Path, iso: bool) -> None:
 def test_csv_headerless_named_columns_quality_naive_iso(tmp_path: Path) -> None:
     log = read_csv_log(write(tmp_path, "a.csv", f"{T0},63.43,10.39\n{T0 + 1},63.44,10.39\n"))
     assert log.height is None and list(log.lines) == [1, 2]
-    log = read_csv_log(write(tmp_path, "b.csv", "Longitude, Latitude ,Quality,UTC\n10.39,63.43,4,2020-09-15T10:00:00\n10.39,63.43,5,2020-09-15 10:00:01\n"))
+    log = read_csv_log(
+        write(
+            tmp_path,
+            "b.csv",
+            "Longitude, Latitude ,Quality,UTC\n10.39,63.43,4,2020-09-15T10:00:00\n10.39,63.43,5,2020-09-15 10:00:01\n",
+        )
+    )
     np.testing.assert_allclose(log.time, [T0, T0 + 1])
     np.testing.assert_allclose(log.lat, 63.43)
     assert log.quality_counts() == {"code 4": 1, "code 5": 1}
@@ -313,7 +348,11 @@ def test_csv_headerless_named_columns_quality_naive_iso(tmp_path: Path) -> None:
         ("time,lat,lon\n1600164000,63.43,10.39\n1600164001,nan,10.39\n", "not a finite", "line 3"),
         ("time,lat,lon\n1600164000,63.43,10.39\n1600164000,63.43,10.39\n", "duplicated", "line 3"),
         ("time,lat,lon\n1600164000,63.43,10.39\n1600163999,63.43,10.39\n", "decreasing", "line 3"),
-        ("time,lat,lon,quality\n1600164000,63.43,10.39,4\n1600164001,63.43,10.39,4.5\n", "integer quality", "line 3, column quality"),
+        (
+            "time,lat,lon,quality\n1600164000,63.43,10.39,4\n1600164001,63.43,10.39,4.5\n",
+            "integer quality",
+            "line 3, column quality",
+        ),
         ("time,latitude,lng,lon\n1600164000,63.43,10.39,10.39\n", "more than one lon", "line 1"),
         ("time,x,y\n1600164000,63.43,10.39\n1600164001,63.43,10.39\n", "no lat, lon column", "line 1"),
         ("1600164000,63.43,10.39,4,5\n1600164001,63.43,10.39,4,5\n", "3 or 4 columns", "line 1"),

@@ -26,8 +26,9 @@ def test_tracks_simulated_lidar_targets() -> None:
         pose = sensor_pose(float(p.north[0]), float(p.east[0]), float(p.heading[0]), mount)
         parts.append(tracker.step(lidar_scan(s.xyz.astype(float), s.stamp, pose, LayoutMask())))
     tab = TrackTable.concatenate(parts)
-    tracks = Tracks(tab.time, tab.track_id, tab.existence, tab.x, tab.P, tab.confirmed,
-                    scan_times=np.array([s.stamp for s in sweeps]))
+    tracks = Tracks(
+        tab.time, tab.track_id, tab.existence, tab.x, tab.P, tab.confirmed, scan_times=np.array([s.stamp for s in sweeps])
+    )
     ev = evaluate(tracks, truth_from_scenario(sc), gate=10.0)
     ids = {o.name: i for i, o in enumerate(lid.scene.objects)}
     summaries = {s.target: s for s in ev.summaries}

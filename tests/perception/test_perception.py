@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from seatwin.errors import InputError
+from seatwin.layout import DEFAULT_LAYOUT
 from seatwin.perception import MeasurementKind, Scan, cartesian_to_polar, polar_to_cartesian
 from seatwin.perception.camera import camera_scan, pixel_bearing
 from seatwin.perception.cluster import cluster_centroids, cluster_labels
@@ -13,7 +14,6 @@ from seatwin.perception.frames import FLU_TO_FRD, Mount, quaternion_matrix, sens
 from seatwin.perception.lidar import LidarClustering, lidar_scan
 from seatwin.perception.map_mask import LayoutMask, NoMask, RasterMask, load_mask
 from seatwin.perception.radar import RadarPlots, radar_scan
-from seatwin.layout import DEFAULT_LAYOUT
 
 
 def test_polar_round_trip() -> None:
@@ -36,8 +36,9 @@ def test_raster_mask(tmp_path) -> None:
     water = np.zeros((4, 3), np.uint8)
     water[1, 2] = 1  # row 1 (north 11..12), column 2 (east 22..23)
     (tmp_path / "m.bin").write_bytes(water.tobytes())
-    (tmp_path / "m.yaml").write_text("map_width: 3\nmap_height: 4\ngrid_resolution: 1\n"
-                                     "origin_x_coordinate: 20.0\norigin_y_coordinate: 10.0\n")
+    (tmp_path / "m.yaml").write_text(
+        "map_width: 3\nmap_height: 4\ngrid_resolution: 1\norigin_x_coordinate: 20.0\norigin_y_coordinate: 10.0\n"
+    )
     m = RasterMask.load(tmp_path / "m.yaml")
     assert m.is_water(11.5, 22.5) and not m.is_water(10.5, 22.5) and not m.is_water(11.5, 21.5)
     assert not m.is_water(100.0, 100.0)  # outside the raster = land
@@ -77,8 +78,13 @@ def test_mount_quaternion_of_flu_sensor() -> None:
 
 def _box(center_n, center_e, half=1.5, n=200, seed=0):
     rng = np.random.default_rng(seed)
-    return np.column_stack((rng.uniform(center_n - half, center_n + half, n), rng.uniform(center_e - half, center_e + half, n),
-                            rng.uniform(-2.0, -0.2, n)))
+    return np.column_stack(
+        (
+            rng.uniform(center_n - half, center_n + half, n),
+            rng.uniform(center_e - half, center_e + half, n),
+            rng.uniform(-2.0, -0.2, n),
+        )
+    )
 
 
 @pytest.mark.parametrize("heading", [0.0, 0.7, -2.5])

@@ -18,21 +18,22 @@ T0 = 1_600_000_000.0
 def _recording(run_dir: Path, shift: float = 0.0) -> Path:
     """Ownship at (0, 0) heading north; lidar (FLU) sees a target 20 m ahead moving east, plus a fixed point."""
     with RecordingWriter(run_dir, "mcap", sensors={"lidar": {"model": "VLP-16"}}) as w:
-        w.write_static_transforms(T0, [StaticTransform("milliAmpere/base_link_frd", "lidar", (0.0, 0.0, -2.0),
-                                                       mount_rotation("flu"))])
+        w.write_static_transforms(
+            T0, [StaticTransform("milliAmpere/base_link_frd", "lidar", (0.0, 0.0, -2.0), mount_rotation("flu"))]
+        )
         for k in range(30):
             t = T0 + 0.1 * k
             east = 0.2 * k
-            w.write_ground_truth(t, [VesselPose("milliAmpere", 0.0, 0.0, 0.0, ownship=True),
-                                     VesselPose("Havfruen", 20.0, east, 0.0, v_east=2.0)])
+            w.write_ground_truth(
+                t, [VesselPose("milliAmpere", 0.0, 0.0, 0.0, ownship=True), VesselPose("Havfruen", 20.0, east, 0.0, v_east=2.0)]
+            )
             # a 3×3 m block of points at the target (sensor frame: x ahead, y left) and one at 10 m left
             g = np.linspace(-1.0, 1.0, 4)
             gx, gy = np.meshgrid(20.0 + g + shift, -east + g)
             x = np.append(gx.ravel(), 0.0)
             y = np.append(gy.ravel(), 10.0)
             n = len(x)
-            w.write_sweep("/lidar/points", "lidar", t, x, y, np.full(n, 0.5), np.ones(n), np.zeros(n, np.uint16),
-                          np.zeros(n))
+            w.write_sweep("/lidar/points", "lidar", t, x, y, np.full(n, 0.5), np.ones(n), np.zeros(n, np.uint16), np.zeros(n))
     return run_dir
 
 
@@ -50,8 +51,27 @@ def test_compare_report_with_clouds(tmp_path: Path) -> None:
     real = _recording(tmp_path / "real")
     synt = _recording(tmp_path / "synt", shift=0.5)
     out = tmp_path / "rep"
-    code = run(["compare", "--real", str(real), "--synthetic", str(synt), "--truth", str(real), "--tuning", "real",
-                "--report", str(out), "--clouds-at", "+1.5", "--map", "none", "--json", str(tmp_path / "c.json")])
+    code = run(
+        [
+            "compare",
+            "--real",
+            str(real),
+            "--synthetic",
+            str(synt),
+            "--truth",
+            str(real),
+            "--tuning",
+            "real",
+            "--report",
+            str(out),
+            "--clouds-at",
+            "+1.5",
+            "--map",
+            "none",
+            "--json",
+            str(tmp_path / "c.json"),
+        ]
+    )
     assert code == 0
     assert "Point clouds at" in (out / "index.html").read_text()
     assert json.loads((tmp_path / "c.json").read_text())["targets"][0]["tuning"] == "real"
@@ -59,6 +79,5 @@ def test_compare_report_with_clouds(tmp_path: Path) -> None:
 
 def test_clouds_need_recordings_and_report(tmp_path: Path, capsys) -> None:
     real = _recording(tmp_path / "real")
-    assert run(["compare", "--real", str(real), "--synthetic", str(real), "--truth", str(real),
-                "--clouds-at", "+1"]) == 2
+    assert run(["compare", "--real", str(real), "--synthetic", str(real), "--truth", str(real), "--clouds-at", "+1"]) == 2
     assert "--report" in capsys.readouterr().err

@@ -28,15 +28,27 @@ def _tracks(offset: float, start: int, var: float) -> Tracks:
 @pytest.fixture(scope="module")
 def page(tmp_path_factory: pytest.TempPathFactory) -> Path:
     t = 1.6e9 + np.arange(0.0, 30.0)
-    truth = TruthSet({"Havfruen": TruthTrack("Havfruen", t, t - t[0], np.full(30, 10.0)),
-                      "Finn": TruthTrack("Finn", t, np.zeros(30), np.full(30, -40.0))})
+    truth = TruthSet(
+        {
+            "Havfruen": TruthTrack("Havfruen", t, t - t[0], np.full(30, 10.0)),
+            "Finn": TruthTrack("Finn", t, np.zeros(30), np.full(30, -40.0)),
+        }
+    )
     real, synt = _tracks(0.5, 0, 1.0), _tracks(-0.5, 3, 2.0)
     comps = [compare(real, synt, truth, "synthetic"), compare(real, real, truth, "real")]
     rng = np.random.default_rng(0)
-    clouds = [Clouds(float(t[5]), rng.normal(size=(500, 2)) * 20, rng.normal(size=(800, 2)) * 20, (0.0, 0.0),
-                     [("Havfruen", 5.0, 10.0)])]
-    return write_comparison_report(tmp_path_factory.mktemp("report"), comps, truth, title="test <report>",
-                                   scenario="s3", mask=load_mask("harbour"), clouds=clouds)
+    clouds = [
+        Clouds(float(t[5]), rng.normal(size=(500, 2)) * 20, rng.normal(size=(800, 2)) * 20, (0.0, 0.0), [("Havfruen", 5.0, 10.0)])
+    ]
+    return write_comparison_report(
+        tmp_path_factory.mktemp("report"),
+        comps,
+        truth,
+        title="test <report>",
+        scenario="s3",
+        mask=load_mask("harbour"),
+        clouds=clouds,
+    )
 
 
 @pytest.mark.slow
@@ -46,8 +58,14 @@ def test_page_is_self_contained(page: Path) -> None:
     assert "test &lt;report&gt;" in text  # escaped
     assert not re.search(r'(src|href)="(?!data:)', text), "every resource must be embedded"
     assert text.count('src="data:image/png;base64,') >= 6
-    for needle in ("AHED (standard)", "AHED (printed)", "Average, all tunings", "upper bound", "Point clouds at",
-                   "Neither dataset has a track"):
+    for needle in (
+        "AHED (standard)",
+        "AHED (printed)",
+        "Average, all tunings",
+        "upper bound",
+        "Point clouds at",
+        "Neither dataset has a track",
+    ):
         assert needle in text
 
 
@@ -62,15 +80,27 @@ def _chromium() -> str:
 @pytest.mark.slow
 def test_renders_in_headless_chromium(page: Path, tmp_path: Path) -> None:
     exe = _chromium()
-    flags = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking",
-             "--disable-component-update", "--disable-sync", f"--user-data-dir={tmp_path / 'profile'}",
-             "--virtual-time-budget=10000"]
+    flags = [
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--no-first-run",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--disable-sync",
+        f"--user-data-dir={tmp_path / 'profile'}",
+        "--virtual-time-budget=10000",
+    ]
     dom = subprocess.run([exe, *flags, "--dump-dom", page.as_uri()], capture_output=True, text=True, timeout=120)
     assert dom.returncode == 0, dom.stderr[-2000:]
     m = re.search(r'data-figures="(\d+)/(\d+)"', dom.stdout)
     assert m, "the page's load check did not run"
     assert m.group(1) == m.group(2) and int(m.group(2)) >= 6, f"figures decoded: {m.group(0)}"
     shot = tmp_path / "shot.png"
-    run = subprocess.run([exe, *flags, f"--screenshot={shot}", "--window-size=1200,2000", page.as_uri()],
-                         capture_output=True, text=True, timeout=120)
+    run = subprocess.run(
+        [exe, *flags, f"--screenshot={shot}", "--window-size=1200,2000", page.as_uri()],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert run.returncode == 0 and shot.stat().st_size > 10_000, run.stderr[-2000:]

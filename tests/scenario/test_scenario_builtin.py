@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from seatwin.layout import DEFAULT_LAYOUT, Box
 from seatwin.scenario import builtin_names, builtin_scenario, load_scenario
 from seatwin.scenario.model import Role, Scenario, VesselState
 from seatwin.scenario.summary import closest_approach
-from seatwin.layout import DEFAULT_LAYOUT, Box
 
 REQUIRED = {
     "ferry_crossing",
@@ -42,7 +42,10 @@ def _angle_diff_deg(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def _segment_hits_box(p0: tuple[float, float], p1: tuple[float, float], box: Box) -> bool:
     """Does the 2-D segment p0→p1 (north, east) pass through the box? (Liang–Barsky clipping.)"""
     lo, hi = 0.0, 1.0
-    for x0, dx, bmin, bmax in ((p0[0], p1[0] - p0[0], box.north_min, box.north_max), (p0[1], p1[1] - p0[1], box.east_min, box.east_max)):
+    for x0, dx, bmin, bmax in (
+        (p0[0], p1[0] - p0[0], box.north_min, box.north_max),
+        (p0[1], p1[1] - p0[1], box.east_min, box.east_max),
+    ):
         if dx == 0.0:
             if not bmin <= x0 <= bmax:
                 return False
@@ -55,7 +58,7 @@ def _segment_hits_box(p0: tuple[float, float], p1: tuple[float, float], box: Box
 
 
 def test_the_required_builtins_exist_and_are_usable_by_name(scenarios):
-    assert REQUIRED <= set(scenarios)
+    assert set(scenarios) >= REQUIRED
     for name, sc in scenarios.items():
         assert load_scenario(name).ownship.trajectory.north == pytest.approx(sc.ownship.trajectory.north)
 

@@ -113,7 +113,10 @@ def _edit(saved: tuple[Path, dict], change) -> Path:  # type: ignore[no-untyped-
         (lambda d: d["vessels"][0].update(role="ownship"), r"at most one ownship"),
         (lambda d: d["vessels"][0].update(column=7), r"field vessels\[0\]\.column: column 7 is not in em\.csv"),
         (lambda d: d["vessels"].pop(1), r"field vessels: em\.csv has vessel\(s\) \[2\] not listed"),
-        (lambda d: d["vessels"][2]["dimensions"].update(beam=-1), r"field vessels\[2\]\.dimensions\.beam: Input should be greater than 0"),
+        (
+            lambda d: d["vessels"][2]["dimensions"].update(beam=-1),
+            r"field vessels\[2\]\.dimensions\.beam: Input should be greater than 0",
+        ),
         (lambda d: d["origin"].update(lat=123.0), r"field origin\.lat: Input should be less than or equal to 90"),
         (lambda d: d.update(trajectory="gone.csv"), r"field trajectory: trajectory file .*gone\.csv' does not exist"),
         (lambda d: d.update(seed="many"), r"field seed: Input should be a valid integer"),

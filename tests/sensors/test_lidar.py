@@ -63,11 +63,19 @@ def test_vlp16_presets() -> None:
     np.testing.assert_allclose(VLP16.column_offsets()[[0, 900]], [0.0, 0.05])
 
 
-@pytest.mark.parametrize(("changes", "param"), [
-    ({"columns": 0}, "columns"), ({"elevations_deg": ()}, "elevations_deg"), ({"elevations_deg": (1.0, -1.0)}, "elevations_deg"),
-    ({"rate_hz": 0.0}, "rate_hz"), ({"min_range": 200.0}, "min_range"), ({"drop_probability": 1.5}, "drop_probability"),
-    ({"dissipation": {"half_range": -1.0}}, "dissipation"), ({"colour": "red"}, "colour"),
-])
+@pytest.mark.parametrize(
+    ("changes", "param"),
+    [
+        ({"columns": 0}, "columns"),
+        ({"elevations_deg": ()}, "elevations_deg"),
+        ({"elevations_deg": (1.0, -1.0)}, "elevations_deg"),
+        ({"rate_hz": 0.0}, "rate_hz"),
+        ({"min_range": 200.0}, "min_range"),
+        ({"drop_probability": 1.5}, "drop_probability"),
+        ({"dissipation": {"half_range": -1.0}}, "dissipation"),
+        ({"colour": "red"}, "colour"),
+    ],
+)
 def test_lidar_config_names_the_bad_field(changes, param) -> None:
     from seatwin.errors import ParameterError
 
@@ -159,7 +167,9 @@ def test_thesis_return_model_functions() -> None:
     np.testing.assert_allclose(out, [255.0, 255.0 / 4, 127.5, 127.5], rtol=1e-6)
     assert return_probability(np.float32([60.0]), RangeDissipation(half_range=60.0, width=8.0))[0] == pytest.approx(0.5)
     np.testing.assert_allclose(water_limit(np.float32([-3.0, -3.0]), np.float32([0.5, -0.5]), 100.0), [6.0, 100.0])
-    np.testing.assert_allclose(cos_incidence(np.float32([[0, 0, 4], [0, 0, 0]]), np.float32([[0, 0.6, -0.8], [1, 0, 0]])), [0.8, 0.0], atol=1e-6)
+    np.testing.assert_allclose(
+        cos_incidence(np.float32([[0, 0, 4], [0, 0, 0]]), np.float32([[0, 0.6, -0.8], [1, 0, 0]])), [0.8, 0.0], atol=1e-6
+    )
 
 
 def moving_scenario(speed: float) -> Scenario:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import os
 import signal
 import subprocess
@@ -41,7 +42,15 @@ def test_schedule_orders_sensors_by_time_and_phase():
 
     ev = schedule([S("gt", 10, 0.0), S("cam", 5, 0.03)], 0.0, 0.5)
     assert [(round(t, 3), i) for t, i, _ in ev] == [
-        (0.0, 0), (0.03, 1), (0.1, 0), (0.2, 0), (0.23, 1), (0.3, 0), (0.4, 0), (0.43, 1)]
+        (0.0, 0),
+        (0.03, 1),
+        (0.1, 0),
+        (0.2, 0),
+        (0.23, 1),
+        (0.3, 0),
+        (0.4, 0),
+        (0.43, 1),
+    ]
     assert [k for t, i, k in ev if i == 1] == [0, 1, 2]
 
 
@@ -72,7 +81,7 @@ def test_recording_contents(tmp_path, scenario):
         assert c.frame_id == "lidar"
         assert c.points.dtype.names == ("x", "y", "z", "intensity", "ring", "time")
         assert c.points.dtype.itemsize == 24 and len(c.points) > 100
-        assert 0.0 <= c.points["time"].min() and c.points["time"].max() < 0.1
+        assert c.points["time"].min() >= 0.0 and c.points["time"].max() < 0.1
         truth = bag.ground_truth()
         assert set(truth) == {v.name for v in scenario.vessels}
         tf = bag.static_transforms()
@@ -110,8 +119,18 @@ def test_bad_input_fails_before_any_work(tmp_path, capsys):
 
 
 def _start_run(tmp_path: Path) -> subprocess.Popen:
-    cmd = [sys.executable, "-m", "seatwin.cli.main", "simulate", "ferry_crossing", "--out", str(tmp_path / "run"),
-           "--ray-drop", "0", "--quiet"]
+    cmd = [
+        sys.executable,
+        "-m",
+        "seatwin.cli.main",
+        "simulate",
+        "ferry_crossing",
+        "--out",
+        str(tmp_path / "run"),
+        "--ray-drop",
+        "0",
+        "--quiet",
+    ]
     env = dict(os.environ, PYTHONUNBUFFERED="1")
     return subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
 
@@ -150,3 +169,18 @@ def test_killed_run_leaves_a_readable_bag(tmp_path, sig):
         assert all(len(c.points) > 1000 for c in clouds)
     if sig == signal.SIGINT:
         assert "interrupted" in (m.get("error") or "")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["Scenario3", "Scenario4", "Scenario5", "Scenario6"])
+def test_every_published_scenario_runs_to_its_end(tmp_path, shared_data, name):
+    """The Gemini CSVs (POSIX times ~1.6e9 s) simulate to their very last frame and complete."""
+    from seatwin.scenario.load import load_scenario
+
+    sc = load_scenario(shared_data / "gemini-scenarios" / f"{name}.csv")
+    res = simulate_scenario(sc, tmp_path / name, progress=False, lidar_preset="vlp16-thesis")
+    assert res.completed
+    expected = math.ceil((sc.end - sc.start) * 10.0 - 1e-5)  # frames at 0, 0.1, … < span
+    assert res.frames["lidar"] == res.frames["ground_truth"] == expected
+    with open_bag(tmp_path / name) as bag:
+        assert bag.manifest["completed"] is True

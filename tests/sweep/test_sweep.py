@@ -22,8 +22,23 @@ from seatwin.sweep.results import SweepResult, SweepRow, spearman_by_kind
 def small_sweep(tmp_path_factory):
     """A small sweep through the CLI: noise and mount, two strengths each, two seeds, 20 s."""
     out = tmp_path_factory.mktemp("sweep")
-    code = run(["sweep", "ferry_crossing", "--out", str(out), "--kinds", "noise,mount",
-                "--strengths", "noise=0.1,0.4;mount=1,3", "--seeds", "2", "--duration", "20", "--no-progress"])
+    code = run(
+        [
+            "sweep",
+            "ferry_crossing",
+            "--out",
+            str(out),
+            "--kinds",
+            "noise,mount",
+            "--strengths",
+            "noise=0.1,0.4;mount=1,3",
+            "--seeds",
+            "2",
+            "--duration",
+            "20",
+            "--no-progress",
+        ]
+    )
     assert code == 0
     return out
 
@@ -97,13 +112,21 @@ def test_degradation_settings_and_parsing():
         parse_strengths("drop=0.9", kinds)
 
 
-@pytest.mark.parametrize(("changes", "param"), [
-    ({"kinds": ()}, "kinds"), ({"kinds": ("blur",)}, "kinds"), ({"kinds": ("noise", "noise")}, "kinds"),
-    ({"seeds": ()}, "seeds"), ({"seeds": (1, 1)}, "seeds"), ({"duration": 0.0}, "duration"), ({"offset": -1.0}, "offset"),
-    ({"kinds": ("noise",), "strengths": {"noise": (0.01,)}}, "strengths"),
-    ({"kinds": ("noise",), "strengths": {"mount": (1.0,)}}, "strengths"),
-    ({"kinds": ("noise",), "strengths": {"noise": (0.1, 0.1)}}, "strengths"),
-])
+@pytest.mark.parametrize(
+    ("changes", "param"),
+    [
+        ({"kinds": ()}, "kinds"),
+        ({"kinds": ("blur",)}, "kinds"),
+        ({"kinds": ("noise", "noise")}, "kinds"),
+        ({"seeds": ()}, "seeds"),
+        ({"seeds": (1, 1)}, "seeds"),
+        ({"duration": 0.0}, "duration"),
+        ({"offset": -1.0}, "offset"),
+        ({"kinds": ("noise",), "strengths": {"noise": (0.01,)}}, "strengths"),
+        ({"kinds": ("noise",), "strengths": {"mount": (1.0,)}}, "strengths"),
+        ({"kinds": ("noise",), "strengths": {"noise": (0.1, 0.1)}}, "strengths"),
+    ],
+)
 def test_sweep_settings_name_the_bad_parameter(changes, param):
     with pytest.raises(ParameterError) as exc:
         SweepSettings().with_(**changes)

@@ -168,6 +168,7 @@ def test_marginals_equal_stonesoup_jpda_range_bearing(seed) -> None:
     pd, lam, g = 0.9, 0.5, 3.0  # a constant density per m·rad, as Stone Soup takes it
     (b0, b), gated, pg = _ours(x0, P0, zs, 1.0, 0.3, RangeBearingModel(R), pd, g, lam)
     assert gated.sum(axis=0).max() >= 2
+
     class AnalyticBearingRange(CartesianToBearingRange):
         """Stone Soup's model with the analytic Jacobian (its default is numerical differences, ~1e-8 off)."""
 

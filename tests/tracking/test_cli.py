@@ -32,8 +32,9 @@ def _lidar_recording(run_dir, n_scans: int = 40, dt: float = 0.1):
             boat = VesselPose("boat", 30.0 + 2.0 * k * dt, 10.0 - 1.0 * k * dt, 0.0, v_north=2.0, v_east=-1.0)
             w.write_ground_truth(t, [own, boat])
             # boat returns: a 3 m × 2 m box of points around its position, in the lidar (FLU) frame
-            pts_w = np.column_stack((rng.uniform(-1.5, 1.5, 150) + boat.north, rng.uniform(-1, 1, 150) + boat.east,
-                                     rng.uniform(-1.5, -0.2, 150)))
+            pts_w = np.column_stack(
+                (rng.uniform(-1.5, 1.5, 150) + boat.north, rng.uniform(-1, 1, 150) + boat.east, rng.uniform(-1.5, -0.2, 150))
+            )
             c, s = np.cos(own.heading), np.sin(own.heading)
             rb = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1.0]])
             body_pts = (pts_w - [own.north, own.east, 0.0]) @ rb  # world → body (FRD)
@@ -46,8 +47,24 @@ def test_track_lidar_recording(tmp_path) -> None:
     rd = tmp_path / "run"
     _lidar_recording(rd)
     out = tmp_path / "tracks.csv"
-    assert run(["track", str(rd), "--sensors", "lidar", "--tuning", "synthetic", "--map", "harbour",
-                "--out", str(out), "--no-progress"]) == 0
+    assert (
+        run(
+            [
+                "track",
+                str(rd),
+                "--sensors",
+                "lidar",
+                "--tuning",
+                "synthetic",
+                "--map",
+                "harbour",
+                "--out",
+                str(out),
+                "--no-progress",
+            ]
+        )
+        == 0
+    )
     tr = read_tracks(out)
     assert len(tr.scan_times) == 40 and tr.scan_times[0] == pytest.approx(1.6e9)
     conf = tr.confirmed
@@ -60,13 +77,16 @@ def test_track_lidar_recording(tmp_path) -> None:
     assert ev.summaries[0].coverage > 0.8
 
 
-@pytest.mark.parametrize("args,msg", [
-    (["--sensors", "camera"], "camera detector"),
-    (["--sensors", "sonar"], "should be 'lidar', 'radar' or 'camera'"),
-    (["--tuning", "nope"], "not a tuning preset"),
-    (["--sensors", "radar"], "no radar topics"),
-    (["--map", "/nonexistent/map.yaml"], "map raster"),
-])
+@pytest.mark.parametrize(
+    "args,msg",
+    [
+        (["--sensors", "camera"], "camera detector"),
+        (["--sensors", "sonar"], "should be 'lidar', 'radar' or 'camera'"),
+        (["--tuning", "nope"], "not a tuning preset"),
+        (["--sensors", "radar"], "no radar topics"),
+        (["--map", "/nonexistent/map.yaml"], "map raster"),
+    ],
+)
 def test_track_bad_input(tmp_path, capsys, args, msg) -> None:
     rd = tmp_path / "run"
     _lidar_recording(rd, n_scans=3)
@@ -102,8 +122,9 @@ def test_ravnkloa_import_and_track(shared_data, tmp_path) -> None:
     folder = shared_data / "ravnkloa"
     csv = sorted((folder / "radar-2023").glob("*.csv"))[0]
     rd = tmp_path / "rv"
-    assert run(["import", "ravnkloa-radar", str(csv), "--out", str(rd), "--map",
-                str(folder / "ravnkloa_radar_base_map.yaml")]) == 0
+    assert (
+        run(["import", "ravnkloa-radar", str(csv), "--out", str(rd), "--map", str(folder / "ravnkloa_radar_base_map.yaml")]) == 0
+    )
     out = tmp_path / "tracks.csv"
     assert run(["track", str(rd), "--out", str(out), "--no-progress"]) == 0
     tr = read_tracks(out)

@@ -33,13 +33,16 @@ def test_tuning_file_with_base(tmp_path) -> None:
     assert cfg.gate_g is None and cfg.gate_probability == 0.99
 
 
-@pytest.mark.parametrize("text,match", [
-    ("q_north: -1\n", "q_north"),
-    ("base: nope\n", "unknown base"),
-    ("- 1\n", "mapping"),
-    ("base: real\nsensors:\n  radar:\n    p_detect: 1.5\n", "p_detect"),
-    ("base: real\nbogus: 1\n", "bogus"),
-])
+@pytest.mark.parametrize(
+    "text,match",
+    [
+        ("q_north: -1\n", "q_north"),
+        ("base: nope\n", "unknown base"),
+        ("- 1\n", "mapping"),
+        ("base: real\nsensors:\n  radar:\n    p_detect: 1.5\n", "p_detect"),
+        ("base: real\nbogus: 1\n", "bogus"),
+    ],
+)
 def test_bad_tuning_files(tmp_path, text, match) -> None:
     f = tmp_path / "bad.yaml"
     f.write_text(text)

@@ -18,13 +18,31 @@ SENSOR = (-1500.0, 0.0)  # far enough that the range-bearing model is nearly lin
 
 
 def _nees(kind: MeasurementKind, clutter_mean: float, seed: int) -> tuple[list[float], int]:
-    run = simulate(n_scans=150, dt=1.0, n_targets=3, q=0.3, r_cartesian=9.0, r_range=9.0, r_bearing=2.5e-5,
-                   kind=kind, p_detect=0.95, clutter_mean=clutter_mean, area=(-600, 600, -600, 600),
-                   sensor_position=SENSOR, seed=seed)
+    run = simulate(
+        n_scans=150,
+        dt=1.0,
+        n_targets=3,
+        q=0.3,
+        r_cartesian=9.0,
+        r_range=9.0,
+        r_bearing=2.5e-5,
+        kind=kind,
+        p_detect=0.95,
+        clutter_mean=clutter_mean,
+        area=(-600, 600, -600, 600),
+        sensor_position=SENSOR,
+        seed=seed,
+    )
     cfg = TrackerConfig(
-        q_north=0.3, q_east=0.3, gate_g=None, gate_probability=0.999,
-        sensors={"radar": dict(r_range=9.0, r_bearing=2.5e-5, r_cartesian=9.0, p_detect=0.95,
-                               clutter_density=max(clutter_mean, 1e-3) / 1200**2)},
+        q_north=0.3,
+        q_east=0.3,
+        gate_g=None,
+        gate_probability=0.999,
+        sensors={
+            "radar": dict(
+                r_range=9.0, r_bearing=2.5e-5, r_cartesian=9.0, p_detect=0.95, clutter_density=max(clutter_mean, 1e-3) / 1200**2
+            )
+        },
     )
     tr = JIPDATracker(cfg)
     nees, ids = [], set()
@@ -43,8 +61,9 @@ def _nees(kind: MeasurementKind, clutter_mean: float, seed: int) -> tuple[list[f
     return nees, len(ids)
 
 
-@pytest.mark.parametrize("kind,clutter", [(MeasurementKind.CARTESIAN, 0.0), (MeasurementKind.RANGE_BEARING, 0.0),
-                                          (MeasurementKind.CARTESIAN, 10.0)])
+@pytest.mark.parametrize(
+    "kind,clutter", [(MeasurementKind.CARTESIAN, 0.0), (MeasurementKind.RANGE_BEARING, 0.0), (MeasurementKind.CARTESIAN, 10.0)]
+)
 def test_anees_inside_chi2_bounds(kind, clutter) -> None:
     nees: list[float] = []
     for seed in range(10):

@@ -27,11 +27,14 @@ def test_cv_model_hand_values() -> None:
     assert np.all(Q[:2, 2:] == 0)
 
 
-@pytest.mark.parametrize("model", [
-    RangeBearingModel(np.eye(2), 3.0, -7.0),
-    BearingModel(np.eye(1), -2.0, 4.0),
-    CartesianModel(np.eye(2)),
-])
+@pytest.mark.parametrize(
+    "model",
+    [
+        RangeBearingModel(np.eye(2), 3.0, -7.0),
+        BearingModel(np.eye(1), -2.0, 4.0),
+        CartesianModel(np.eye(2)),
+    ],
+)
 def test_jacobian_matches_finite_differences(model) -> None:
     zhat, H = model.predict(X)
     eps = 1e-6
@@ -76,7 +79,11 @@ def test_ekf_equals_linear_kalman_filter_for_linear_models() -> None:
 def test_tracker_with_certain_detection_is_the_kalman_filter() -> None:
     """P_D → 1, no clutter, one target: the JIPDA mixture collapses to Algorithm 1."""
     cfg = TrackerConfig(
-        q_north=0.3, q_east=0.3, gate_g=None, gate_probability=1 - 1e-12, initial_existence=0.999999,
+        q_north=0.3,
+        q_east=0.3,
+        gate_g=None,
+        gate_probability=1 - 1e-12,
+        initial_existence=0.999999,
         sensors={"radar": dict(r_range=1, r_bearing=1, r_cartesian=4.0, p_detect=1 - 1e-12, clutter_density=1e-30)},
     )
     rng = np.random.default_rng(3)

@@ -48,7 +48,9 @@ def write_raster(tmp_path, water: np.ndarray, ox: float, oy: float):
     h, w = water.shape
     water.astype(np.uint8).tofile(tmp_path / "map.bin")
     (tmp_path / "map.yaml").write_text(
-        yaml.safe_dump({"map_width": w, "map_height": h, "grid_resolution": 1, "origin_x_coordinate": ox, "origin_y_coordinate": oy})
+        yaml.safe_dump(
+            {"map_width": w, "map_height": h, "grid_resolution": 1, "origin_x_coordinate": ox, "origin_y_coordinate": oy}
+        )
     )
     return tmp_path / "map.bin"
 

@@ -8,8 +8,9 @@ import typer
 
 
 def register(app: typer.Typer) -> None:
-    bag_app = typer.Typer(help="Inspect recordings: ROS 1 .bag, rosbag2 (SQLite3, MCAP) and seatwin run directories.",
-                          no_args_is_help=True)
+    bag_app = typer.Typer(
+        help="Inspect recordings: ROS 1 .bag, rosbag2 (SQLite3, MCAP) and seatwin run directories.", no_args_is_help=True
+    )
     app.add_typer(bag_app, name="bag")
 
     @bag_app.command("info")

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Optional
 
 import typer
 
@@ -24,21 +23,83 @@ _HELP = (
 def register(app: typer.Typer) -> None:
     @app.command("compare", help=_HELP)
     def compare_cmd(
-        real: list[str] = typer.Option(..., "--real", metavar="TRACKS.csv|RECORDING", help="The real dataset's track file or recording (repeat, paired in order with --synthetic and --tuning)."),
-        synthetic: list[str] = typer.Option(..., "--synthetic", metavar="TRACKS.csv|RECORDING", help="The synthetic dataset's track file or recording."),
-        truth: str = typer.Option(..., "--truth", metavar="SCENARIO_OR_RECORDING", help="Ground truth used to pick each dataset's track of each target (scenario or recording)."),
-        tuning: str = typer.Option("", "--tuning", metavar="NAME[,NAME…]", help="Tracker tuning(s): presets (synthetic, real, joyride) or tuning files; with track files only labels."),
-        json_out: Optional[Path] = typer.Option(None, "--json", metavar="OUT.json", help="Write the AHED table as JSON here."),
-        report: Optional[Path] = typer.Option(None, "--report", metavar="DIR", help="Write a self-contained HTML report (figures embedded) into this folder."),
-        gate: float = typer.Option(10.0, "--gate", metavar="M", help="Track-to-truth association distance (m); the thesis uses 10."),
-        time_tolerance: float = typer.Option(0.05, "--time-tolerance", metavar="S", help="Largest time difference (s) at which a real and a synthetic instant are the same instant."),
-        hellinger_form: str = typer.Option("standard", "--hellinger-form", metavar="standard|printed", help="HED (5.30): the standard Gaussian Hellinger distance (mean term exp(−NEES/8)), or as printed in the thesis (exp(−NEES/16))."),
-        both_missing: str = typer.Option("never", "--both-missing", metavar="never|zero|skip", help="Instants where neither dataset has the target: 'never' skips them but gives AHED 0 to a target neither ever tracked (thesis scenario 7); 'zero' counts each as HED 0; 'skip' always skips."),
+        real: list[str] = typer.Option(
+            ...,
+            "--real",
+            metavar="TRACKS.csv|RECORDING",
+            help="The real dataset's track file or recording (repeat, paired in order with --synthetic and --tuning).",
+        ),
+        synthetic: list[str] = typer.Option(
+            ..., "--synthetic", metavar="TRACKS.csv|RECORDING", help="The synthetic dataset's track file or recording."
+        ),
+        truth: str = typer.Option(
+            ...,
+            "--truth",
+            metavar="SCENARIO_OR_RECORDING",
+            help="Ground truth used to pick each dataset's track of each target (scenario or recording).",
+        ),
+        tuning: str = typer.Option(
+            "",
+            "--tuning",
+            metavar="NAME[,NAME…]",
+            help="Tracker tuning(s): presets (synthetic, real, joyride) or tuning files; with track files only labels.",
+        ),
+        json_out: Path | None = typer.Option(None, "--json", metavar="OUT.json", help="Write the AHED table as JSON here."),
+        report: Path | None = typer.Option(
+            None, "--report", metavar="DIR", help="Write a self-contained HTML report (figures embedded) into this folder."
+        ),
+        gate: float = typer.Option(
+            10.0, "--gate", metavar="M", help="Track-to-truth association distance (m); the thesis uses 10."
+        ),
+        time_tolerance: float = typer.Option(
+            0.05,
+            "--time-tolerance",
+            metavar="S",
+            help="Largest time difference (s) at which a real and a synthetic instant are the same instant.",
+        ),
+        hellinger_form: str = typer.Option(
+            "standard",
+            "--hellinger-form",
+            metavar="standard|printed",
+            help=(
+                "HED (5.30): the standard Gaussian Hellinger distance (mean term exp(−NEES/8)), or as printed in the "
+                "thesis (exp(−NEES/16))."
+            ),
+        ),
+        both_missing: str = typer.Option(
+            "never",
+            "--both-missing",
+            metavar="never|zero|skip",
+            help=(
+                "Instants where neither dataset has the target: 'never' skips them but gives AHED 0 to a target "
+                "neither ever tracked (thesis scenario 7); 'zero' counts each as HED 0; 'skip' always skips."
+            ),
+        ),
         all_tracks: bool = typer.Option(False, "--all-tracks", help="Also associate unconfirmed (tentative) tracks."),
-        map_spec: str = typer.Option("harbour", "--map", metavar="harbour|none|RASTER.yaml", help="Land drawn under the report's track plots: the built-in harbour, none, or a land/water raster (Ravnkloa base-map format)."),
-        clouds_at: Optional[str] = typer.Option(None, "--clouds-at", metavar="TIME|+SECONDS", help="Add both datasets' point clouds at this time to the report (thesis Fig. 5.10): POSIX seconds, or +S after the ground truth's start. Needs recordings for --real and --synthetic."),
-        clouds_sensor: str = typer.Option("lidar", "--clouds-sensor", metavar="lidar|radar", help="Which point clouds --clouds-at shows."),
-        keep_tracks: Optional[Path] = typer.Option(None, "--keep-tracks", metavar="DIR", help="Write the track files of tracked recordings into DIR."),
+        map_spec: str = typer.Option(
+            "harbour",
+            "--map",
+            metavar="harbour|none|RASTER.yaml",
+            help=(
+                "Land drawn under the report's track plots: the built-in harbour, none, or a land/water raster "
+                "(Ravnkloa base-map format)."
+            ),
+        ),
+        clouds_at: str | None = typer.Option(
+            None,
+            "--clouds-at",
+            metavar="TIME|+SECONDS",
+            help=(
+                "Add both datasets' point clouds at this time to the report (thesis Fig. 5.10): POSIX seconds, or +S "
+                "after the ground truth's start. Needs recordings for --real and --synthetic."
+            ),
+        ),
+        clouds_sensor: str = typer.Option(
+            "lidar", "--clouds-sensor", metavar="lidar|radar", help="Which point clouds --clouds-at shows."
+        ),
+        keep_tracks: Path | None = typer.Option(
+            None, "--keep-tracks", metavar="DIR", help="Write the track files of tracked recordings into DIR."
+        ),
     ) -> None:
         import json
 
@@ -55,18 +116,35 @@ def register(app: typer.Typer) -> None:
             check_output_file(json_out, "json_out")
         if report is not None:
             check_output_dir(report, "report")
-        options = CompareOptions(gate=gate, confirmed_only=not all_tracks, time_tolerance=time_tolerance,
-                                 form=hellinger_form, both_missing=both_missing)  # type: ignore[arg-type]
-        result = compare_runs(real, synthetic, truth, tunings=[t.strip() for t in tuning.split(",") if t.strip()],
-                              options=options, report_dir=report, report_map=map_spec, clouds_at=when,
-                              clouds_relative=relative, clouds_sensor=clouds_sensor, keep_tracks=keep_tracks)
+        options = CompareOptions(
+            gate=gate,
+            confirmed_only=not all_tracks,
+            time_tolerance=time_tolerance,
+            form=hellinger_form,
+            both_missing=both_missing,
+        )  # type: ignore[arg-type]
+        result = compare_runs(
+            real,
+            synthetic,
+            truth,
+            tunings=[t.strip() for t in tuning.split(",") if t.strip()],
+            options=options,
+            report_dir=report,
+            report_map=map_spec,
+            clouds_at=when,
+            clouds_relative=relative,
+            clouds_sensor=clouds_sensor,
+            keep_tracks=keep_tracks,
+        )
         table = result.table
         typer.echo(f"{'target':<12} {'tuning':<10} {'AHED':>7} {'common':>6} {'only_r':>6} {'only_s':>6} {'covdiff':>8}")
         for ln in table["targets"]:
             ahed = "-" if ln["ahed"] is None else f"{ln['ahed']:.4f}"
             cd = "-" if ln["mean_covdiff"] is None else f"{ln['mean_covdiff']:.4f}"
-            typer.echo(f"{ln['target']:<12} {ln['tuning']:<10} {ahed:>7} {ln['n_common']:>6} {ln['n_only_real']:>6} "
-                       f"{ln['n_only_synthetic']:>6} {cd:>8}")
+            typer.echo(
+                f"{ln['target']:<12} {ln['tuning']:<10} {ahed:>7} {ln['n_common']:>6} {ln['n_only_real']:>6} "
+                f"{ln['n_only_synthetic']:>6} {cd:>8}"
+            )
         mean = "-" if table["ahed_mean"] is None else f"{table['ahed_mean']:.4f}"
         typer.echo(f"AHED mean ({hellinger_form} HED): {mean}")
         for path in result.track_files:

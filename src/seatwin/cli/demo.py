@@ -10,7 +10,9 @@ import typer
 def register(app: typer.Typer) -> None:
     @app.command("demo")
     def demo_cmd(
-        out: Path = typer.Option(Path("runs/demo"), "--out", help="Folder for everything the demo writes (must not hold an earlier demo)."),
+        out: Path = typer.Option(
+            Path("runs/demo"), "--out", help="Folder for everything the demo writes (must not hold an earlier demo)."
+        ),
         scenario: str = typer.Option("ferry_crossing", "--scenario", help="Built-in scenario to simulate."),
         duration: float = typer.Option(30.0, "--duration", help="Simulated seconds."),
         seed: int = typer.Option(1, "--seed", help="Seed of every random draw."),
@@ -23,8 +25,9 @@ def register(app: typer.Typer) -> None:
         """
         from seatwin.pipeline.demo import run_demo
 
-        result = run_demo(out, scenario=scenario, duration=duration, seed=seed,
-                          step=lambda title: typer.secho(f"▶ {title}", bold=True))
+        result = run_demo(
+            out, scenario=scenario, duration=duration, seed=seed, step=lambda title: typer.secho(f"▶ {title}", bold=True)
+        )
         for ln in result.comparison.table["targets"]:
             ahed = "undefined" if ln["ahed"] is None else f"{ln['ahed']:.3f}"
             typer.echo(f"  {ln['target']:<12} tuning {ln['tuning']:<10} AHED {ahed}  (common instants {ln['n_common']})")

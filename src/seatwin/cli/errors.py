@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Optional
 
 import typer
 
@@ -21,12 +20,16 @@ _HELP = (
 
 
 def _format_table(rows: list[dict]) -> str:
-    head = f"{'sensor':<12}{'VFOV_c°':>8}{'HFOV_c°':>8}{'N_c':>4}{'N_ch':>6}{'N_cw':>6}{'N_cd':>6}{'n':>6}{'f':>7}{'ε_max [m]':>11}{'B [bytes]':>11}"
+    head = (
+        f"{'sensor':<12}{'VFOV_c°':>8}{'HFOV_c°':>8}{'N_c':>4}{'N_ch':>6}{'N_cw':>6}{'N_cd':>6}"
+        f"{'n':>6}{'f':>7}{'ε_max [m]':>11}{'B [bytes]':>11}"
+    )
     lines = [head, "-" * len(head)]
     for r in rows:
         lines.append(
             f"{r['sensor']:<12}{r['vfov_c_deg']:>8.2f}{r['hfov_c_deg']:>8.2f}{r['n_c']:>4}{r['n_ch']:>6}{r['n_cw']:>6}"
-            f"{'2^' + str(int(r['n_cd']).bit_length() - 1):>6}{r['near']:>6g}{r['far']:>7g}{r['eps_max']:>11.4g}{r['bytes']:>11.3g}"
+            f"{'2^' + str(int(r['n_cd']).bit_length() - 1):>6}{r['near']:>6g}{r['far']:>7g}"
+            f"{r['eps_max']:>11.4g}{r['bytes']:>11.3g}"
         )
     for r in rows:
         for w in r["warnings"]:
@@ -38,7 +41,7 @@ def register(app: typer.Typer) -> None:
     @app.command("errors", help=_HELP)
     def errors_cmd(
         as_json: bool = typer.Option(False, "--json", help='Print {"rows": [...]} as JSON instead of a table.'),
-        plots: Optional[Path] = typer.Option(
+        plots: Path | None = typer.Option(
             None,
             "--plots",
             metavar="DIR",

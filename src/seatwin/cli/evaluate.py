@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Optional
 
 import typer
 
@@ -26,18 +25,31 @@ def _clock(t: float | None) -> str:
 
     if t is None:
         return "-"
-    return dt.datetime.fromtimestamp(t, dt.timezone.utc).strftime("%H:%M:%S.%f")[:-4]
+    return dt.datetime.fromtimestamp(t, dt.UTC).strftime("%H:%M:%S.%f")[:-4]
 
 
 def register(app: typer.Typer) -> None:
     @app.command("evaluate", help=_HELP)
     def evaluate_cmd(
-        tracks: Path = typer.Argument(..., metavar="TRACKS.csv", help="Track file (time,track_id,existence,north,v_north,east,v_east,P00…P33,confirmed)."),
-        truth: str = typer.Option(..., "--truth", metavar="SCENARIO_OR_RECORDING", help="Ground truth: a scenario (built-in name, .yaml or Gemini .csv) or a recording; the ownship is excluded."),
-        json_out: Optional[Path] = typer.Option(None, "--json", metavar="OUT.json", help="Write the per-target metrics as JSON here."),
-        gate: float = typer.Option(10.0, "--gate", metavar="M", help="Track-to-truth association distance (m); the thesis uses 10."),
+        tracks: Path = typer.Argument(
+            ..., metavar="TRACKS.csv", help="Track file (time,track_id,existence,north,v_north,east,v_east,P00…P33,confirmed)."
+        ),
+        truth: str = typer.Option(
+            ...,
+            "--truth",
+            metavar="SCENARIO_OR_RECORDING",
+            help="Ground truth: a scenario (built-in name, .yaml or Gemini .csv) or a recording; the ownship is excluded.",
+        ),
+        json_out: Path | None = typer.Option(
+            None, "--json", metavar="OUT.json", help="Write the per-target metrics as JSON here."
+        ),
+        gate: float = typer.Option(
+            10.0, "--gate", metavar="M", help="Track-to-truth association distance (m); the thesis uses 10."
+        ),
         all_tracks: bool = typer.Option(False, "--all-tracks", help="Also associate unconfirmed (tentative) tracks."),
-        confidence: float = typer.Option(0.95, "--confidence", metavar="P", help="Confidence of the two-sided ANEES bounds (5.28)."),
+        confidence: float = typer.Option(
+            0.95, "--confidence", metavar="P", help="Confidence of the two-sided ANEES bounds (5.28)."
+        ),
     ) -> None:
         import json
 
@@ -47,15 +59,24 @@ def register(app: typer.Typer) -> None:
         if json_out is not None:
             check_output_file(json_out, "json_out")
         result = evaluate_run(tracks, truth, gate=gate, confirmed_only=not all_tracks, confidence=confidence)
-        typer.echo(f"{'target':<12} {'coverage':>8} {'first (UTC)':>14} {'last (UTC)':>14} {'switch':>6} {'RMSE':>8} {'RMSEpos':>8} "
-                   f"{'ANEES':>9} {'bounds':>15}  verdict")
+        typer.echo(
+            f"{'target':<12} {'coverage':>8} {'first (UTC)':>14} {'last (UTC)':>14} {'switch':>6} {'RMSE':>8} {'RMSEpos':>8} "
+            f"{'ANEES':>9} {'bounds':>15}  verdict"
+        )
         for s in result.summaries:
             bounds = "-" if s.anees_lower is None else f"[{s.anees_lower:.3f},{s.anees_upper:.3f}]"
-            typer.echo(f"{s.target:<12} {_fmt(s.coverage):>8} {_clock(s.first_time):>14} {_clock(s.last_time):>14} "
-                       f"{s.track_switches:>6} {_fmt(s.rmse):>8} {_fmt(s.rmse_position):>8} {_fmt(s.anees):>9} {bounds:>15}  "
-                       f"{s.anees_verdict}")
+            typer.echo(
+                f"{s.target:<12} {_fmt(s.coverage):>8} {_clock(s.first_time):>14} {_clock(s.last_time):>14} "
+                f"{s.track_switches:>6} {_fmt(s.rmse):>8} {_fmt(s.rmse_position):>8} {_fmt(s.anees):>9} {bounds:>15}  "
+                f"{s.anees_verdict}"
+            )
         if json_out is not None:
-            data = {"tracks": str(tracks), "truth": str(truth), "confirmed_only": not all_tracks,
-                    "confidence": confidence, **result.to_dict()}
+            data = {
+                "tracks": str(tracks),
+                "truth": str(truth),
+                "confirmed_only": not all_tracks,
+                "confidence": confidence,
+                **result.to_dict(),
+            }
             json_out.write_text(json.dumps(data, indent=2) + "\n")
             typer.echo(f"wrote {json_out}")

@@ -26,37 +26,51 @@ def register(app: typer.Typer) -> None:
         mat: Path = typer.Argument(..., metavar="JOYRIDE.mat", help="The joyride dataset (MATLAB v5)."),
         out: Path = typer.Option(..., "--out", metavar="DIR", help="Directory for fidelity.json, fidelity.md and index.html."),
         fit_on: str = typer.Option(
-            "none", "--fit-on", metavar="WHAT",
-            help="Fit the radar model on: none (default model), first-half (AHED on the second half) or all."),
+            "none",
+            "--fit-on",
+            metavar="WHAT",
+            help="Fit the radar model on: none (default model), first-half (AHED on the second half) or all.",
+        ),
         seeds: int = typer.Option(5, "--seeds", min=1, help="Synthetic recordings (seeds) to compare with the real one."),
         tuning: str = typer.Option(
-            "joyride", "--tuning", metavar="NAME|FILE",
-            help="Tracker tuning used on both datasets (preset or tuning file)."),
+            "joyride", "--tuning", metavar="NAME|FILE", help="Tracker tuning used on both datasets (preset or tuning file)."
+        ),
         radar: Path = typer.Option(
-            None, "--radar", metavar="RADAR.yaml",
-            help="Radar configuration to start from (default: built-in)."),
+            None, "--radar", metavar="RADAR.yaml", help="Radar configuration to start from (default: built-in)."
+        ),
         clutter: str = typer.Option("uniform", "--clutter", help="Clutter form of the fit: uniform or map."),
         agents: str = typer.Option(
-            "jipda,gnn", "--agents", metavar="A[,B]",
-            help="Trackers: jipda and/or gnn (the first is the headline)."),
+            "jipda,gnn", "--agents", metavar="A[,B]", help="Trackers: jipda and/or gnn (the first is the headline)."
+        ),
         boot: int = typer.Option(1000, "--boot", min=10, help="Bootstrap resamples of the AHED interval."),
         fit_boot: int = typer.Option(200, "--fit-boot", min=0, help="Bootstrap resamples of the radar fit."),
         seed: int = typer.Option(0, "--seed", help="First seed (seeds are SEED … SEED+N−1)."),
         calibrate_bias: bool = typer.Option(
-            False, "--calibrate-bias",
-            help="Give the tracker (on both datasets) the fitted bearing bias as its radar calibration (needs "
-                 "--fit-on)."),
+            False,
+            "--calibrate-bias",
+            help="Give the tracker (on both datasets) the fitted bearing bias as its radar calibration (needs --fit-on).",
+        ),
         html: bool = typer.Option(True, "--html/--no-html", help="Also write the HTML report (index.html)."),
     ) -> None:
         from seatwin.cli.output import split_list
         from seatwin.fidelity import FidelityOptions, run_fidelity, write_fidelity
         from seatwin.settings import validated
 
-        opts = validated(FidelityOptions, {
-            "tuning": tuning, "fit_on": fit_on, "seeds": seeds, "n_boot": boot, "fit_boot": fit_boot,
-            "radar": str(radar) if radar else None, "clutter": clutter, "agents": split_list(agents, "agents"),
-            "seed0": seed, "calibrate_bias": calibrate_bias,
-        })
+        opts = validated(
+            FidelityOptions,
+            {
+                "tuning": tuning,
+                "fit_on": fit_on,
+                "seeds": seeds,
+                "n_boot": boot,
+                "fit_boot": fit_boot,
+                "radar": str(radar) if radar else None,
+                "clutter": clutter,
+                "agents": split_list(agents, "agents"),
+                "seed0": seed,
+                "calibrate_bias": calibrate_bias,
+            },
+        )
         result = run_fidelity(str(mat), opts)
         paths = write_fidelity(out, result, html=html)
 
@@ -65,9 +79,11 @@ def register(app: typer.Typer) -> None:
 
         prim = result.primary
         lo, hi = prim.ahed_ci
-        typer.echo(f"AHED {num(prim.ahed)} [{num(lo)}, {num(hi)}] ({result.primary_model} radar model, "
-                   f"{result.primary_agent}, fit on {result.fit_on}, {result.seeds} seeds; common {prim.n_common:.1f}, "
-                   f"only real {prim.n_only_real:.1f}, only synthetic {prim.n_only_synthetic:.1f})")
+        typer.echo(
+            f"AHED {num(prim.ahed)} [{num(lo)}, {num(hi)}] ({result.primary_model} radar model, "
+            f"{result.primary_agent}, fit on {result.fit_on}, {result.seeds} seeds; common {prim.n_common:.1f}, "
+            f"only real {prim.n_only_real:.1f}, only synthetic {prim.n_only_synthetic:.1f})"
+        )
         for label, m in result.models.items():
             for agent, d in m.agents.items():
                 typer.echo(f"  {label:<8} {agent:<6} AHED {num(d.ahed)}  floor {num(d.floor_ahed)}")

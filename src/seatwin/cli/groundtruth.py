@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Optional
 
 import typer
 
@@ -22,17 +21,65 @@ _HELP = (
 def register(app: typer.Typer) -> None:
     @app.command("groundtruth", help=_HELP)
     def groundtruth(
-        origin: str = typer.Option(..., "--origin", metavar="LAT,LON[,HEIGHT]", help="Geodetic origin of the local NED frame (degrees, metres), e.g. 63.4346,10.3977."),
-        vessel: list[str] = typer.Option(..., "--vessel", metavar="NAME=BOW,STERN[,BASELINE_M] | NAME=FILE", help="A vessel and its antenna log(s); repeat for more vessels, numbered V1, V2, … in the order given. BASELINE_M is the hand-measured antenna distance |Q_r| (default: Finn 2.93, Havfruen 2.01, else the median measured distance)."),
-        out: Path = typer.Option(..., "--out", metavar="SCENARIO.csv", help="Gemini scenario CSV to write (TimeInSecondsPosix, V{n}x, V{n}y, V{n}Heading)."),
+        origin: str = typer.Option(
+            ...,
+            "--origin",
+            metavar="LAT,LON[,HEIGHT]",
+            help="Geodetic origin of the local NED frame (degrees, metres), e.g. 63.4346,10.3977.",
+        ),
+        vessel: list[str] = typer.Option(
+            ...,
+            "--vessel",
+            metavar="NAME=BOW,STERN[,BASELINE_M] | NAME=FILE",
+            help=(
+                "A vessel and its antenna log(s); repeat for more vessels, numbered V1, V2, … in the order given. "
+                "BASELINE_M is the hand-measured antenna distance |Q_r| (default: Finn 2.93, Havfruen 2.01, else the "
+                "median measured distance)."
+            ),
+        ),
+        out: Path = typer.Option(
+            ...,
+            "--out",
+            metavar="SCENARIO.csv",
+            help="Gemini scenario CSV to write (TimeInSecondsPosix, V{n}x, V{n}y, V{n}Heading).",
+        ),
         rate: float = typer.Option(10.0, "--rate", metavar="HZ", help="Rate of the common clock (Hz)."),
-        quality: Optional[Path] = typer.Option(None, "--quality", metavar="QUALITY.json", help="Write the per-vessel quality report (ε_gnss statistics, flags, fix quality counts) here."),
-        plots: Optional[Path] = typer.Option(None, "--plots", metavar="DIR", help="Write figures like thesis Figs. 3.14–3.17 (PNG) into this folder."),
-        eps_threshold: float = typer.Option(0.5, "--eps-threshold", metavar="M", help="Flag samples whose ε_gnss (eq. 3.7) exceeds this (m)."),
-        meridian: str = typer.Option("correct", "--meridian", metavar="correct|printed", help="Meridian radius R_M: the correct formula, or eq. 3.5 as printed in the thesis (to reproduce it)."),
-        max_gap: float = typer.Option(5.0, "--max-gap", metavar="S", help="Flag samples interpolated across a gap between fixes longer than this (s)."),
-        smooth: float = typer.Option(1.0, "--smooth", metavar="S", help="Moving-average window for the central-difference velocity (s, 0: none); the course over ground of single-antenna vessels comes from it."),
-        min_cog_speed: float = typer.Option(0.5, "--min-cog-speed", metavar="M/S", help="Single antenna: below this speed the course over ground is not used as heading (flagged, interpolated)."),
+        quality: Path | None = typer.Option(
+            None,
+            "--quality",
+            metavar="QUALITY.json",
+            help="Write the per-vessel quality report (ε_gnss statistics, flags, fix quality counts) here.",
+        ),
+        plots: Path | None = typer.Option(
+            None, "--plots", metavar="DIR", help="Write figures like thesis Figs. 3.14–3.17 (PNG) into this folder."
+        ),
+        eps_threshold: float = typer.Option(
+            0.5, "--eps-threshold", metavar="M", help="Flag samples whose ε_gnss (eq. 3.7) exceeds this (m)."
+        ),
+        meridian: str = typer.Option(
+            "correct",
+            "--meridian",
+            metavar="correct|printed",
+            help="Meridian radius R_M: the correct formula, or eq. 3.5 as printed in the thesis (to reproduce it).",
+        ),
+        max_gap: float = typer.Option(
+            5.0, "--max-gap", metavar="S", help="Flag samples interpolated across a gap between fixes longer than this (s)."
+        ),
+        smooth: float = typer.Option(
+            1.0,
+            "--smooth",
+            metavar="S",
+            help=(
+                "Moving-average window for the central-difference velocity (s, 0: none); the course over ground of "
+                "single-antenna vessels comes from it."
+            ),
+        ),
+        min_cog_speed: float = typer.Option(
+            0.5,
+            "--min-cog-speed",
+            metavar="M/S",
+            help="Single antenna: below this speed the course over ground is not used as heading (flagged, interpolated).",
+        ),
     ) -> None:
         from seatwin.cli.parsing import parse_origin, parse_vessel
         from seatwin.groundtruth import compute_ground_truth, write_outputs

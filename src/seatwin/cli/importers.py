@@ -39,7 +39,9 @@ def register(app: typer.Typer) -> None:
         csv: Path = typer.Argument(..., metavar="RADAR.csv", help="One Ravnkloa radar-2023 CSV file."),
         out: Path = typer.Option(..., "--out", metavar="RUN_DIR", help="New run directory for the recording."),
         fmt: str = typer.Option("mcap", "--format", metavar="FMT", help="Bag format: mcap, sqlite3 or ros1."),
-        map_spec: str = typer.Option(None, "--map", metavar="RASTER", help="Land/water raster to suggest to 'seatwin track' (stored in the manifest)."),
+        map_spec: str = typer.Option(
+            None, "--map", metavar="RASTER", help="Land/water raster to suggest to 'seatwin track' (stored in the manifest)."
+        ),
     ) -> None:
         from seatwin.perception.datasets import import_ravnkloa_radar
 

@@ -20,7 +20,9 @@ def register(app: typer.Typer) -> None:
         range_model: str = typer.Option("raycast", "--range-model", help="Range model: raycast (exact) or depthbuffer."),
         drop: float = typer.Option(None, "--drop", help="Ray-drop probability (default: the preset's, 0.8 as in the thesis)."),
         extent: float = typer.Option(110.0, "--extent", help="Half-size of the plotted square around the ownship, in metres."),
-        harbour: str = typer.Option(None, "--harbour", help="Override the scenario's harbour: 'default', 'none' or a land raster .bin/.yaml."),
+        harbour: str = typer.Option(
+            None, "--harbour", help="Override the scenario's harbour: 'default', 'none' or a land raster .bin/.yaml."
+        ),
     ) -> None:
         """One lidar sweep seen from above over the harbour, coloured by intensity, with the vessels' outlines."""
         from seatwin.errors import InputError
@@ -42,12 +44,21 @@ def register(app: typer.Typer) -> None:
             raise InputError(sc.source, "the scenario has no ownship to carry the lidar")
         start = sc.start + time
         if not (sc.start <= start <= sc.end - cfg.period):
-            raise InputError("--time", f"{time} s is outside the scenario: a sweep must start within 0 … {sc.duration - cfg.period:.1f} s")
+            raise InputError(
+                "--time", f"{time} s is outside the scenario: a sweep must start within 0 … {sc.duration - cfg.period:.1f} s"
+            )
         frame = int(round(time * cfg.rate_hz))
         scene = Scene.from_scenario(sc, harbour=harbour)
         lidar = lidar_for_scenario(sc, scene, config=cfg, range_model=range_model)
         sweep = lidar.sweep(start, frame)
         world = sweep_to_world(lidar, sweep)
-        plot_sweep_top_view(lidar.scene, sweep, world, output, extent=extent, ownship=sc.ownship.name,
-                            title=f"{sc.name}  t = {time:.1f} s  ({cfg.name}, {range_model}, {len(sweep)} points)")
+        plot_sweep_top_view(
+            lidar.scene,
+            sweep,
+            world,
+            output,
+            extent=extent,
+            ownship=sc.ownship.name,
+            title=f"{sc.name}  t = {time:.1f} s  ({cfg.name}, {range_model}, {len(sweep)} points)",
+        )
         typer.echo(f"wrote {output} ({len(sweep)} points)")

@@ -42,8 +42,9 @@ def check_output_dir(path: Path, param: str) -> None:
 
 
 @contextlib.contextmanager
-def progress_counter(what: str, enabled: bool = True, min_total: int = 200,
-                     every_s: float = 10.0) -> Iterator[Callable[[int, int], None]]:
+def progress_counter(
+    what: str, enabled: bool = True, min_total: int = 200, every_s: float = 10.0
+) -> Iterator[Callable[[int, int], None]]:
     """``advance(done, total)``: a rich bar on a terminal; on a pipe or log a line every ``every_s`` seconds."""
     if not enabled:
         yield lambda done, total: None
@@ -55,6 +56,7 @@ def progress_counter(what: str, enabled: bool = True, min_total: int = 200,
         bar = Progress(console=Console(stderr=True), transient=True)
         task = None
         with bar:
+
             def advance(done: int, total: int) -> None:
                 nonlocal task
                 if total < min_total:

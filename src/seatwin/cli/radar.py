@@ -30,9 +30,15 @@ def register(app: typer.Typer) -> None:
     def fit_cmd(
         recording: Path = typer.Argument(..., metavar="RECORDING", help="joyride.mat or a recording with radar plots."),
         out: Path = typer.Option(..., "--out", metavar="RADAR.yaml", help="Where to write the fitted radar configuration."),
-        truth: str = typer.Option(None, "--truth", metavar="SCENARIO", help="Ground truth (scenario file/name or recording); default: from RECORDING."),
-        base: Path = typer.Option(None, "--base", metavar="RADAR.yaml", help="Start from this radar configuration (default: the built-in one)."),
-        gate: float = typer.Option(60.0, "--gate", min=1.0, help="A plot within this distance [m] of a target may be the target's."),
+        truth: str = typer.Option(
+            None, "--truth", metavar="SCENARIO", help="Ground truth (scenario file/name or recording); default: from RECORDING."
+        ),
+        base: Path = typer.Option(
+            None, "--base", metavar="RADAR.yaml", help="Start from this radar configuration (default: the built-in one)."
+        ),
+        gate: float = typer.Option(
+            60.0, "--gate", min=1.0, help="A plot within this distance [m] of a target may be the target's."
+        ),
         boot: int = typer.Option(200, "--boot", min=0, help="Bootstrap resamples for the uncertainties (0: none)."),
         clutter: str = typer.Option("uniform", "--clutter", help="Clutter form: uniform or map (world-fixed density map)."),
         first_half: bool = typer.Option(False, "--first-half", help="Fit on the first half of the scans only."),
@@ -41,8 +47,9 @@ def register(app: typer.Typer) -> None:
         from seatwin.fidelity.radar_fit import fit_radar_to_recording
         from seatwin.sensors.radar.config import save_radar_config
 
-        res, obs = fit_radar_to_recording(recording, truth=truth, base=base, first_half=first_half, gate=gate, boot=boot,
-                                          clutter=clutter, seed=seed)
+        res, obs = fit_radar_to_recording(
+            recording, truth=truth, base=base, first_half=first_half, gate=gate, boot=boot, clutter=clutter, seed=seed
+        )
         save_radar_config(res.config, out)
         est = res.report["estimates"]
 
@@ -53,8 +60,16 @@ def register(app: typer.Typer) -> None:
             return f"  {key:<26} {e['estimate']:.4g} {unit} ± {e['se']:.2g}{ci_txt}"
 
         typer.echo(f"fitted {len(obs)} scans of {recording} → {out}")
-        for key, unit in (("range_bias_m", "m"), ("range_sigma_m", "m"), ("bearing_bias_deg", "°"), ("bearing_sigma_deg", "°"),
-                          ("detection_rate", ""), ("snr_ref_db", "dB"), ("pd_max", ""), ("clutter_density_per_km2", "/km²/scan")):
+        for key, unit in (
+            ("range_bias_m", "m"),
+            ("range_sigma_m", "m"),
+            ("bearing_bias_deg", "°"),
+            ("bearing_sigma_deg", "°"),
+            ("detection_rate", ""),
+            ("snr_ref_db", "dB"),
+            ("pd_max", ""),
+            ("clutter_density_per_km2", "/km²/scan"),
+        ):
             typer.echo(line(key, unit))
         for note in res.report.get("notes", []):
             typer.echo(f"  note: {note}")
@@ -63,15 +78,35 @@ def register(app: typer.Typer) -> None:
     def simulate_cmd(
         scenario: str = typer.Argument(..., metavar="SCENARIO", help="Built-in scenario name or scenario file."),
         out: Path = typer.Option(None, "--out", metavar="PLOTS.csv", help="CSV of plots to write."),
-        out_bag: Path = typer.Option(None, "--out-bag", metavar="RUN_DIR", help="New run directory: a recording with the plots on /radar/detections, ground truth and tf."),
+        out_bag: Path = typer.Option(
+            None,
+            "--out-bag",
+            metavar="RUN_DIR",
+            help="New run directory: a recording with the plots on /radar/detections, ground truth and tf.",
+        ),
         fmt: str = typer.Option("mcap", "--format", metavar="FMT", help="Bag format of --out-bag: mcap, sqlite3 or ros1."),
-        spokes_dir: Path = typer.Option(None, "--spokes-dir", metavar="DIR", help="Also write each rotation's raw spokes (Gemini RadarStreamingRequest fields) as DIR/scan_NNNNNN.npz."),
+        spokes_dir: Path = typer.Option(
+            None,
+            "--spokes-dir",
+            metavar="DIR",
+            help="Also write each rotation's raw spokes (Gemini RadarStreamingRequest fields) as DIR/scan_NNNNNN.npz.",
+        ),
         config: Path = typer.Option(None, "--radar", metavar="RADAR.yaml", help="Radar configuration (default: built-in)."),
         seed: int = typer.Option(None, "--seed", help="Seed of the random draws (default: the scenario's)."),
-        duration: float = typer.Option(None, "--duration", min=0.0, help="Simulate only the first SECONDS (rotations in [start, start + SECONDS))."),
+        duration: float = typer.Option(
+            None, "--duration", min=0.0, help="Simulate only the first SECONDS (rotations in [start, start + SECONDS))."
+        ),
     ) -> None:
         from seatwin.pipeline.radar import simulate_radar
 
-        result = simulate_radar(scenario, plots_csv=out, run_dir=out_bag, spokes_dir=spokes_dir,
-                                radar_config=str(config) if config else None, seed=seed, duration=duration, fmt=fmt)
+        result = simulate_radar(
+            scenario,
+            plots_csv=out,
+            run_dir=out_bag,
+            spokes_dir=spokes_dir,
+            radar_config=str(config) if config else None,
+            seed=seed,
+            duration=duration,
+            fmt=fmt,
+        )
         typer.echo(f"simulated {result.n_scans} radar scans, {result.n_plots} plots" + "".join(f" → {p}" for p in result.outputs))

@@ -117,8 +117,16 @@ def _print_summary(s: dict) -> None:  # type: ignore[type-arg]
         vt.add_column(col, justify="right" if col not in ("name", "role", "model") else "left")
     for v in s["vessels"]:
         sp = v["speed_mps"]
-        row = [v["name"], v["role"], v["model"], str(v["samples"]), f"{sp['min']:.2f}", f"{sp['mean']:.2f}",
-               f"{sp['max']:.2f}", f"{v['distance_m']:.1f}"]
+        row = [
+            v["name"],
+            v["role"],
+            v["model"],
+            str(v["samples"]),
+            f"{sp['min']:.2f}",
+            f"{sp['mean']:.2f}",
+            f"{sp['max']:.2f}",
+            f"{v['distance_m']:.1f}",
+        ]
         if water:
             row.append("–" if v["on_water"] is None else f"{100 * v['on_water']:.0f} %")
         vt.add_row(*row)

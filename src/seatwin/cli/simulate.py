@@ -23,8 +23,9 @@ class BagFormat(str, Enum):
 def register(app: typer.Typer) -> None:
     @app.command("simulate")
     def simulate_cmd(
-        scenario: str = typer.Argument(..., metavar="SCENARIO",
-                                       help="A built-in scenario name, a scenario .yaml, or a Gemini .csv (vessel 3 = ownship)."),
+        scenario: str = typer.Argument(
+            ..., metavar="SCENARIO", help="A built-in scenario name, a scenario .yaml, or a Gemini .csv (vessel 3 = ownship)."
+        ),
         out: Path = typer.Option(..., "--out", help="New run directory to record into."),
         duration: float | None = typer.Option(None, "--duration", help="Simulated seconds (default: to the scenario's end)."),
         start: float | None = typer.Option(None, "--start", help="POSIX start time (default: the scenario's start)."),
@@ -37,7 +38,9 @@ def register(app: typer.Typer) -> None:
         fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Bag format."),
         date: str | None = typer.Option(None, "--date", help="UTC date YYYY-MM-DD of a TimeOfDay CSV."),
         sensors: str = typer.Option("lidar", "--sensors", metavar="LIST", help="Comma-separated ownship sensors: lidar, radar."),
-        radar: str | None = typer.Option(None, "--radar", metavar="RADAR.yaml", help="Radar configuration (default: the built-in model)."),
+        radar: str | None = typer.Option(
+            None, "--radar", metavar="RADAR.yaml", help="Radar configuration (default: the built-in model)."
+        ),
         quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar."),
     ) -> None:
         """Simulate the ownship's sensors along a scenario and record a ROS bag (MCAP by default).
@@ -50,9 +53,21 @@ def register(app: typer.Typer) -> None:
         from seatwin.pipeline.simulate import simulate_run
 
         result = simulate_run(
-            scenario, out, start=start, duration=duration, date=_date(date), progress=not quiet,
-            sensors=split_list(sensors, "sensors"), seed=seed, lidar_preset=lidar_preset, lidar_mode=lidar_mode.value,
-            ray_drop=ray_drop, range_noise=range_noise, dissipation=dissipation, fmt=fmt.value, radar_config=radar,
+            scenario,
+            out,
+            start=start,
+            duration=duration,
+            date=_date(date),
+            progress=not quiet,
+            sensors=split_list(sensors, "sensors"),
+            seed=seed,
+            lidar_preset=lidar_preset,
+            lidar_mode=lidar_mode.value,
+            ray_drop=ray_drop,
+            range_noise=range_noise,
+            dissipation=dissipation,
+            fmt=fmt.value,
+            radar_config=radar,
         )
         state = "completed" if result.completed else "INCOMPLETE (interrupted)"
         typer.echo(

@@ -56,31 +56,46 @@ def register(app: typer.Typer) -> None:
     @app.command("sweep", help=_HELP)
     def sweep_cmd(
         scenario: str = typer.Argument(
-            "ferry_crossing", metavar="[SCENARIO]",
-            help="Built-in scenario name or scenario file (default ferry_crossing)."),
+            "ferry_crossing", metavar="[SCENARIO]", help="Built-in scenario name or scenario file (default ferry_crossing)."
+        ),
         out: Path = typer.Option(
-            ..., "--out", metavar="DIR",
-            help="Folder for sweep.csv, sweep.json, sweep.png and tracks/ (must not hold an earlier sweep)."),
+            ...,
+            "--out",
+            metavar="DIR",
+            help="Folder for sweep.csv, sweep.json, sweep.png and tracks/ (must not hold an earlier sweep).",
+        ),
         kinds: str = typer.Option(
-            "noise,drop,dissipation,mount", "--kinds", metavar="LIST",
-            help="Comma-separated degradations: noise, drop, dissipation, mount."),
+            "noise,drop,dissipation,mount",
+            "--kinds",
+            metavar="LIST",
+            help="Comma-separated degradations: noise, drop, dissipation, mount.",
+        ),
         strengths: str | None = typer.Option(
-            None, "--strengths", metavar="KIND=S,S;…",
+            None,
+            "--strengths",
+            metavar="KIND=S,S;…",
             help="Strengths per kind, e.g. 'noise=0.05,0.2;mount=1,2' (a bare list with one kind). Default: noise "
-                 "0.05,0.1,0.2,0.4 m; drop 0.85,0.9,0.95,0.98; dissipation 1; mount 0.5,1,2,4 deg."),
+            "0.05,0.1,0.2,0.4 m; drop 0.85,0.9,0.95,0.98; dissipation 1; mount 0.5,1,2,4 deg.",
+        ),
         seeds: int = typer.Option(
-            3, "--seeds", metavar="N", min=1,
-            help="Repeat every point with seeds 1…N and show the spread."),
+            3, "--seeds", metavar="N", min=1, help="Repeat every point with seeds 1…N and show the spread."
+        ),
         duration: float = typer.Option(30.0, "--duration", metavar="S", help="Simulated seconds per run."),
         offset: float | None = typer.Option(
-            None, "--offset", metavar="S",
-            help="Window start in seconds after the scenario's start (default: the window centred in the scenario)."),
+            None,
+            "--offset",
+            metavar="S",
+            help="Window start in seconds after the scenario's start (default: the window centred in the scenario).",
+        ),
         tuning: str = typer.Option(
-            "synthetic", "--tuning", metavar="NAME|FILE",
-            help="Tracker tuning for every run (preset synthetic, real, joyride, or a file)."),
+            "synthetic",
+            "--tuning",
+            metavar="NAME|FILE",
+            help="Tracker tuning for every run (preset synthetic, real, joyride, or a file).",
+        ),
         keep_recordings: bool = typer.Option(
-            False, "--keep-recordings",
-            help="Keep every simulated recording under DIR/recordings (large)."),
+            False, "--keep-recordings", help="Keep every simulated recording under DIR/recordings (large)."
+        ),
         progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar."),
     ) -> None:
         from seatwin.cli.output import check_output_dir, progress_counter
@@ -88,14 +103,23 @@ def register(app: typer.Typer) -> None:
         from seatwin.sweep import SweepSettings, plot_sweep, run_sweep, spearman_by_kind, summarise, write_results
 
         chosen = split_list(kinds, "kinds") or ()
-        settings = validated(SweepSettings, {
-            "scenario": scenario, "kinds": chosen, "strengths": parse_strengths(strengths, chosen),
-            "seeds": tuple(range(1, seeds + 1)), "duration": duration, "offset": offset, "tuning": tuning,
-            "keep_recordings": keep_recordings,
-        })
+        settings = validated(
+            SweepSettings,
+            {
+                "scenario": scenario,
+                "kinds": chosen,
+                "strengths": parse_strengths(strengths, chosen),
+                "seeds": tuple(range(1, seeds + 1)),
+                "duration": duration,
+                "offset": offset,
+                "tuning": tuning,
+                "keep_recordings": keep_recordings,
+            },
+        )
         check_output_dir(out, "out")
         total, done = settings.n_steps(), 0
         with progress_counter("sweep", progress, min_total=1) as advance:
+
             def step(_name: str) -> None:
                 nonlocal done
                 done += 1
@@ -105,8 +129,10 @@ def register(app: typer.Typer) -> None:
         csv_path, json_path = write_results(out, result)
         png = plot_sweep(result, out / "sweep.png")
         for kind, rho in spearman_by_kind(result).items():
-            means = ", ".join(f"{s.strength:g}: {s.ahed_mean:.3f}" if s.ahed_mean is not None else f"{s.strength:g}: –"
-                              for s in summarise(result.kind_rows(kind)))
+            means = ", ".join(
+                f"{s.strength:g}: {s.ahed_mean:.3f}" if s.ahed_mean is not None else f"{s.strength:g}: –"
+                for s in summarise(result.kind_rows(kind))
+            )
             r = rho.rho_points
             typer.echo(f"{kind:12s} ρ = {r:.2f}  " if r is not None else f"{kind:12s} ρ = –     ", nl=False)
             typer.echo(f"mean AHED by strength {means}")

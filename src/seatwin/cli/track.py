@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Optional
 
 import typer
 
@@ -19,16 +18,54 @@ _HELP = (
 def register(app: typer.Typer) -> None:
     @app.command("track", help=_HELP)
     def track_cmd(
-        recording: Path = typer.Argument(..., metavar="RECORDING", help="A run directory, rosbag2 directory, or .mcap/.db3/.bag file."),
+        recording: Path = typer.Argument(
+            ..., metavar="RECORDING", help="A run directory, rosbag2 directory, or .mcap/.db3/.bag file."
+        ),
         out: Path = typer.Option(..., "--out", metavar="TRACKS.csv", help="Where to write the track file."),
-        sensors: Optional[str] = typer.Option(None, "--sensors", metavar="LIST", help="Comma-separated sensors: lidar, radar, camera. Default: the lidar and radar topics the recording has."),
-        tuning: Optional[str] = typer.Option(None, "--tuning", metavar="NAME|FILE", help="Tracker tuning: a preset (synthetic, real, joyride — thesis Tables 5.1/5.2 and the joyride radar) or a YAML/JSON file. Default: the one the recording's manifest suggests, else 'real'."),
-        map_spec: Optional[str] = typer.Option(None, "--map", metavar="harbour|none|RASTER", help="Water mask for land/quay returns: the built-in harbour, none, or a raster (.yaml/.bin, Ravnkloa format). Default: the recording's suggestion, else none."),
-        merge: Optional[float] = typer.Option(None, "--radar-merge", metavar="M", help="Merge radar plots closer than M metres into one measurement (default: the recording's suggestion, else 0)."),
-        radar_kind: str = typer.Option("range_bearing", "--radar-model", metavar="range_bearing|cartesian", help="Measurement model of radar plots: range and bearing from the radar (R from r_range, r_bearing), or Cartesian north/east (R from r_cartesian)."),
+        sensors: str | None = typer.Option(
+            None,
+            "--sensors",
+            metavar="LIST",
+            help="Comma-separated sensors: lidar, radar, camera. Default: the lidar and radar topics the recording has.",
+        ),
+        tuning: str | None = typer.Option(
+            None,
+            "--tuning",
+            metavar="NAME|FILE",
+            help=(
+                "Tracker tuning: a preset (synthetic, real, joyride — thesis Tables 5.1/5.2 and the joyride radar) or "
+                "a YAML/JSON file. Default: the one the recording's manifest suggests, else 'real'."
+            ),
+        ),
+        map_spec: str | None = typer.Option(
+            None,
+            "--map",
+            metavar="harbour|none|RASTER",
+            help=(
+                "Water mask for land/quay returns: the built-in harbour, none, or a raster (.yaml/.bin, Ravnkloa "
+                "format). Default: the recording's suggestion, else none."
+            ),
+        ),
+        merge: float | None = typer.Option(
+            None,
+            "--radar-merge",
+            metavar="M",
+            help="Merge radar plots closer than M metres into one measurement (default: the recording's suggestion, else 0).",
+        ),
+        radar_kind: str = typer.Option(
+            "range_bearing",
+            "--radar-model",
+            metavar="range_bearing|cartesian",
+            help=(
+                "Measurement model of radar plots: range and bearing from the radar (R from r_range, r_bearing), or "
+                "Cartesian north/east (R from r_cartesian)."
+            ),
+        ),
         eps: float = typer.Option(1.5, "--cluster-eps", metavar="M", help="Lidar clustering distance (m)."),
         min_points: int = typer.Option(3, "--min-points", metavar="N", help="Smallest lidar cluster (points)."),
-        agent: str = typer.Option("jipda", "--agent", metavar="jipda|gnn", help="The tracker: JIPDA (thesis ch. 5.1) or global nearest neighbour."),
+        agent: str = typer.Option(
+            "jipda", "--agent", metavar="jipda|gnn", help="The tracker: JIPDA (thesis ch. 5.1) or global nearest neighbour."
+        ),
         progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar on long recordings."),
     ) -> None:
         from seatwin.cli.output import check_output_file, progress_counter, split_list
@@ -36,14 +73,26 @@ def register(app: typer.Typer) -> None:
         from seatwin.settings import validated
 
         check_output_file(out, "out")
-        options = validated(TrackOptions, dict(
-            sensors=split_list(sensors, "sensors"), tuning=tuning, map_spec=map_spec, merge_distance=merge,
-            radar_kind=radar_kind, eps=eps, min_points=min_points, agent=agent))
+        options = validated(
+            TrackOptions,
+            dict(
+                sensors=split_list(sensors, "sensors"),
+                tuning=tuning,
+                map_spec=map_spec,
+                merge_distance=merge,
+                radar_kind=radar_kind,
+                eps=eps,
+                min_points=min_points,
+                agent=agent,
+            ),
+        )
         with progress_counter("tracking", enabled=progress) as advance:
             result = track_recording(recording, options, progress=advance)
         from seatwin.evaluation import write_tracks
 
         result.tracks.source = str(out)
         write_tracks(out, result.tracks)
-        typer.echo(f"{result.n_scans} scans ({', '.join(result.sensors)}), tuning {result.tuning!r}: {result.n_tracks} tracks, "
-                   f"{result.n_confirmed} confirmed; {result.elapsed_s:.2f} s; wrote {out}")
+        typer.echo(
+            f"{result.n_scans} scans ({', '.join(result.sensors)}), tuning {result.tuning!r}: {result.n_tracks} tracks, "
+            f"{result.n_confirmed} confirmed; {result.elapsed_s:.2f} s; wrote {out}"
+        )

@@ -86,4 +86,3 @@ class RayCaster(Protocol):
         ``directions`` must be unit vectors. Normals are the triangles' geometric normals
         (outward for consistently wound closed meshes), unit length."""
         ...
-

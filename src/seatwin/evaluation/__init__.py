@@ -16,7 +16,25 @@ from seatwin.evaluation.tracks_io import Tracks, read_tracks, write_tracks
 from seatwin.evaluation.truth import TruthSet, TruthTrack, load_truth, truth_from_scenario
 
 __all__ = [
-    "Association", "CompareOptions", "Comparison", "Evaluation", "Tracks", "TruthSet", "TruthTrack",
-    "anees", "anees_bounds", "associate", "compare", "comparison_table", "covdiff", "evaluate", "hellinger",
-    "load_truth", "nees", "read_tracks", "rmse", "truth_from_scenario", "write_tracks",
+    "Association",
+    "CompareOptions",
+    "Comparison",
+    "Evaluation",
+    "Tracks",
+    "TruthSet",
+    "TruthTrack",
+    "anees",
+    "anees_bounds",
+    "associate",
+    "compare",
+    "comparison_table",
+    "covdiff",
+    "evaluate",
+    "hellinger",
+    "load_truth",
+    "nees",
+    "read_tracks",
+    "rmse",
+    "truth_from_scenario",
+    "write_tracks",
 ]

@@ -183,8 +183,9 @@ def _pick(values: NDArray[np.float64], idx: NDArray[np.int64]) -> NDArray[np.flo
     return out
 
 
-def compare_target(real: Evaluation, synthetic: Evaluation, truth: TruthSet, target: str, tuning: str,
-                   options: CompareOptions) -> tuple[ComparisonSeries, TargetComparison]:
+def compare_target(
+    real: Evaluation, synthetic: Evaluation, truth: TruthSet, target: str, tuning: str, options: CompareOptions
+) -> tuple[ComparisonSeries, TargetComparison]:
     """HED over time and the AHED line of one target."""
     sr, ss = real.series[target], synthetic.series[target]
     ir, is_ = match_times(sr.time, ss.time, options.time_tolerance)
@@ -207,8 +208,18 @@ def compare_target(real: Evaluation, synthetic: Evaluation, truth: TruthSet, tar
         other[common] = hellinger(ms, ps, mr, pr, other_form)
         cdiff[common] = covdiff(ps, pr)
     series = ComparisonSeries(
-        target, time, has_r, has_s, truth_ok, hed, other, cdiff,
-        _pick(sr.nees, ir), _pick(ss.nees, is_), _pick(sr.rmse, ir), _pick(ss.rmse, is_),
+        target,
+        time,
+        has_r,
+        has_s,
+        truth_ok,
+        hed,
+        other,
+        cdiff,
+        _pick(sr.nees, ir),
+        _pick(ss.nees, is_),
+        _pick(sr.rmse, ir),
+        _pick(ss.rmse, is_),
     )
     n_common = int(np.count_nonzero(common))
     n_only_r = int(np.count_nonzero(has_r & ~has_s))
@@ -221,20 +232,31 @@ def compare_target(real: Evaluation, synthetic: Evaluation, truth: TruthSet, tar
     summary_r = next(s for s in real.summaries if s.target == target)
     summary_s = next(s for s in synthetic.summaries if s.target == target)
     line = TargetComparison(
-        target=target, tuning=tuning, ahed=ahed, hellinger_form=options.form,
-        ahed_standard=by_form["standard"], ahed_printed=by_form["printed"], both_missing=options.both_missing,
-        n_instants=int(np.count_nonzero(truth_ok)), n_common=n_common, n_only_real=n_only_r,
-        n_only_synthetic=n_only_s, n_both_missing=n_none,
+        target=target,
+        tuning=tuning,
+        ahed=ahed,
+        hellinger_form=options.form,
+        ahed_standard=by_form["standard"],
+        ahed_printed=by_form["printed"],
+        both_missing=options.both_missing,
+        n_instants=int(np.count_nonzero(truth_ok)),
+        n_common=n_common,
+        n_only_real=n_only_r,
+        n_only_synthetic=n_only_s,
+        n_both_missing=n_none,
         fraction_only_one=((n_only_r + n_only_s) / either) if either else None,
         mean_covdiff=_num(float(np.mean(cdiff[common]))) if n_common else None,
         nees_difference_rms=_num(rms(series.nees_synthetic[common] - series.nees_real[common])) if n_common else None,
         rmse_difference_rms=_num(rms(series.rmse_synthetic[common] - series.rmse_real[common])) if n_common else None,
-        anees_real=summary_r.anees, anees_synthetic=summary_s.anees,
+        anees_real=summary_r.anees,
+        anees_synthetic=summary_s.anees,
     )
     return series, line
 
 
-def compare(real: Tracks, synthetic: Tracks, truth: TruthSet, tuning: str = "", options: CompareOptions | None = None) -> Comparison:
+def compare(
+    real: Tracks, synthetic: Tracks, truth: TruthSet, tuning: str = "", options: CompareOptions | None = None
+) -> Comparison:
     """Compare a real and a synthetic tracker run against the same ground truth (thesis 5.2.1)."""
     options = options or CompareOptions()
     ev_r = evaluate(real, truth, options.gate, options.confirmed_only, options.confidence)
@@ -260,7 +282,11 @@ def comparison_table(comparisons: list[Comparison]) -> dict:
         "targets": lines,
         "ahed_mean": float(np.mean(values)) if values else None,
         "ahed_mean_by_tuning": by_tuning,
-        "conventions": {"hellinger_form": opts.form, "both_missing": opts.both_missing,
-                        "time_tolerance_s": opts.time_tolerance, "gate_m": opts.gate,
-                        "confirmed_only": opts.confirmed_only},
+        "conventions": {
+            "hellinger_form": opts.form,
+            "both_missing": opts.both_missing,
+            "time_tolerance_s": opts.time_tolerance,
+            "gate_m": opts.gate,
+            "confirmed_only": opts.confirmed_only,
+        },
     }

@@ -74,8 +74,11 @@ class Evaluation:
     summaries: list[TargetSummary]
 
     def to_dict(self) -> dict:
-        return {"gate_m": self.association.gate, "n_instants": int(len(self.association.times)),
-                "targets": [s.to_dict() for s in self.summaries]}
+        return {
+            "gate_m": self.association.gate,
+            "n_instants": int(len(self.association.times)),
+            "targets": [s.to_dict() for s in self.summaries],
+        }
 
 
 def _num(x: float) -> float | None:
@@ -116,19 +119,28 @@ def summarise(series: TargetSeries, truth_defined: NDArray[np.bool_], confidence
         vel[valid] = np.hypot(d[:, 0], d[:, 1])
     times = series.time[valid]
     return TargetSummary(
-        target=series.target, n_instants=n_inst, n_valid=n_k,
+        target=series.target,
+        n_instants=n_inst,
+        n_valid=n_k,
         coverage=(n_k / n_inst) if n_inst else None,
-        first_time=float(times[0]) if n_k else None, last_time=float(times[-1]) if n_k else None,
-        track_switches=track_switches(series.track_id), track_losses=track_losses(series.track_id, truth_defined),
+        first_time=float(times[0]) if n_k else None,
+        last_time=float(times[-1]) if n_k else None,
+        track_switches=track_switches(series.track_id),
+        track_losses=track_losses(series.track_id, truth_defined),
         track_ids=sorted({int(k) for k in series.track_id[valid]}),
-        rmse=_num(rms(series.rmse)), rmse_position=_num(rms(series.rmse_position)), rmse_velocity=_num(rms(vel)),
-        anees=_num(value), anees_lower=_num(bounds.lower), anees_upper=_num(bounds.upper),
+        rmse=_num(rms(series.rmse)),
+        rmse_position=_num(rms(series.rmse_position)),
+        rmse_velocity=_num(rms(vel)),
+        anees=_num(value),
+        anees_lower=_num(bounds.lower),
+        anees_upper=_num(bounds.upper),
         anees_verdict=bounds.verdict(value),
     )
 
 
-def evaluate(tracks: Tracks, truth: TruthSet, gate: float = DEFAULT_GATE_M, confirmed_only: bool = True,
-             confidence: float = 0.95) -> Evaluation:
+def evaluate(
+    tracks: Tracks, truth: TruthSet, gate: float = DEFAULT_GATE_M, confirmed_only: bool = True, confidence: float = 0.95
+) -> Evaluation:
     """Associate ``tracks`` with ``truth`` and compute every target's metrics (thesis 5.1.4)."""
     used = tracks.confirmed_only() if confirmed_only else tracks
     assoc = associate(used, truth, gate)

@@ -36,8 +36,9 @@ def log_bc_covariance(p1: ArrayLike, p2: ArrayLike) -> NDArray[np.float64]:
     return np.minimum(value, 0.0)
 
 
-def log_bhattacharyya(mu1: ArrayLike, p1: ArrayLike, mu2: ArrayLike, p2: ArrayLike,
-                      form: HellingerForm = "standard") -> NDArray[np.float64]:
+def log_bhattacharyya(
+    mu1: ArrayLike, p1: ArrayLike, mu2: ArrayLike, p2: ArrayLike, form: HellingerForm = "standard"
+) -> NDArray[np.float64]:
     """``log BC`` of two Gaussians in the ``"standard"`` or the thesis's ``"printed"`` form (see module doc)."""
     if form not in FORMS:
         raise ValueError(f"form must be one of {FORMS}, got {form!r}")
@@ -54,8 +55,9 @@ def _from_log_bc(log_bc: NDArray[np.float64]) -> NDArray[np.float64]:
     return np.clip(np.sqrt(np.maximum(-np.expm1(log_bc), 0.0)), 0.0, 1.0)
 
 
-def hellinger(mu1: ArrayLike, p1: ArrayLike, mu2: ArrayLike, p2: ArrayLike,
-              form: HellingerForm = "standard") -> NDArray[np.float64]:
+def hellinger(
+    mu1: ArrayLike, p1: ArrayLike, mu2: ArrayLike, p2: ArrayLike, form: HellingerForm = "standard"
+) -> NDArray[np.float64]:
     """HED (5.30) between ``N(μ₁, P₁)`` and ``N(μ₂, P₂)``, batched over leading axes; in [0, 1]."""
     return _from_log_bc(log_bhattacharyya(mu1, p1, mu2, p2, form))
 

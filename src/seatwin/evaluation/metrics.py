@@ -71,7 +71,9 @@ def anees_bounds(n_k: int, n_g: int = 4, confidence: float = 0.95) -> AneesBound
     return AneesBounds(
         lower=float(chi2.ppf(alpha / 2, dof) / n_k),
         upper=float(chi2.ppf(1 - alpha / 2, dof) / n_k),
-        n_k=int(n_k), n_g=int(n_g), confidence=confidence,
+        n_k=int(n_k),
+        n_g=int(n_g),
+        confidence=confidence,
     )
 
 

@@ -74,8 +74,16 @@ class Tracks:
     def select(self, mask: ArrayLike) -> Tracks:
         """The rows where ``mask`` holds; the scan times are kept."""
         m = np.asarray(mask, dtype=bool)
-        return Tracks(self.time[m], self.track_id[m], self.existence[m], self.state[m], self.covariance[m],
-                      self.confirmed[m], self.scan_times, self.source)
+        return Tracks(
+            self.time[m],
+            self.track_id[m],
+            self.existence[m],
+            self.state[m],
+            self.covariance[m],
+            self.confirmed[m],
+            self.scan_times,
+            self.source,
+        )
 
     def confirmed_only(self) -> Tracks:
         return self.select(self.confirmed)
@@ -83,8 +91,12 @@ class Tracks:
 
 def _validate(tracks: Tracks) -> None:
     src = tracks.source
-    for name, values in (("time", tracks.time), ("existence", tracks.existence), ("state", tracks.state),
-                         ("covariance", tracks.covariance)):
+    for name, values in (
+        ("time", tracks.time),
+        ("existence", tracks.existence),
+        ("state", tracks.state),
+        ("covariance", tracks.covariance),
+    ):
         bad = ~np.isfinite(values).reshape(len(tracks.time), -1).all(axis=1) if len(tracks.time) else np.zeros(0, bool)
         if bad.any():
             raise InputError(src, f"{name} is not finite in row {int(np.flatnonzero(bad)[0])}", where=name)
@@ -109,8 +121,7 @@ def _validate(tracks: Tracks) -> None:
     neg = eig[:, 0] < -PSD_RTOL * eig[:, -1]
     if neg.any():
         i = int(np.flatnonzero(neg)[0])
-        raise InputError(src, f"covariance is not positive semi-definite in row {i} (eigenvalues {eig[i].tolist()})",
-                         where="P")
+        raise InputError(src, f"covariance is not positive semi-definite in row {i} (eigenvalues {eig[i].tolist()})", where="P")
     pairs = np.stack([tracks.time, tracks.track_id.astype(float)], axis=1)
     uniq = np.unique(pairs, axis=0)
     if len(uniq) != len(pairs):
@@ -186,13 +197,15 @@ def read_tracks(path: str | os.PathLike[str]) -> Tracks:
             if tid == NO_TRACK:
                 filled = [c for c in value_cols + ["confirmed"] if row[col[c]].strip()]
                 if filled:
-                    raise InputError(path, f"a scan marker row (track_id {NO_TRACK}) must leave {filled[0]} empty",
-                                     where=f"line {line}")
+                    raise InputError(
+                        path, f"a scan marker row (track_id {NO_TRACK}) must leave {filled[0]} empty", where=f"line {line}"
+                    )
                 scans.append(t)
                 continue
             if tid < 0:
-                raise InputError(path, f"track_id must be >= 0 (or {NO_TRACK} for a scan marker), got {tid}",
-                                 where=f"line {line}")
+                raise InputError(
+                    path, f"track_id must be >= 0 (or {NO_TRACK} for a scan marker), got {tid}", where=f"line {line}"
+                )
             values = [t] + [number(c) for c in value_cols]
             flag = row[col["confirmed"]].strip()
             if flag not in ("0", "1"):
@@ -202,7 +215,12 @@ def read_tracks(path: str | os.PathLike[str]) -> Tracks:
             confirmed.append(flag == "1")
     arr = np.asarray(numeric, dtype=float).reshape(-1, 2 + 4 + 16)
     return Tracks(
-        time=arr[:, 0], track_id=np.asarray(ids, dtype=np.int64), existence=arr[:, 1], state=arr[:, 2:6],
-        covariance=arr[:, 6:22].reshape(-1, 4, 4), confirmed=np.asarray(confirmed, dtype=bool),
-        scan_times=np.asarray(scans, dtype=float), source=str(path),
+        time=arr[:, 0],
+        track_id=np.asarray(ids, dtype=np.int64),
+        existence=arr[:, 1],
+        state=arr[:, 2:6],
+        covariance=arr[:, 6:22].reshape(-1, 4, 4),
+        confirmed=np.asarray(confirmed, dtype=bool),
+        scan_times=np.asarray(scans, dtype=float),
+        source=str(path),
     )

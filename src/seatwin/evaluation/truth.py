@@ -54,8 +54,12 @@ class TruthTrack:
         for arr_name in ("time", "north", "east"):
             if not np.isfinite(getattr(self, arr_name)).all():
                 raise InputError(self.source, f"ground truth {arr_name} of {self.name!r} is not finite")
-        self.v_north = numerical_velocity(self.time, self.north) if self.v_north is None else np.asarray(self.v_north, float).reshape(n)
-        self.v_east = numerical_velocity(self.time, self.east) if self.v_east is None else np.asarray(self.v_east, float).reshape(n)
+        self.v_north = (
+            numerical_velocity(self.time, self.north) if self.v_north is None else np.asarray(self.v_north, float).reshape(n)
+        )
+        self.v_east = (
+            numerical_velocity(self.time, self.east) if self.v_east is None else np.asarray(self.v_east, float).reshape(n)
+        )
 
     @property
     def start(self) -> float:
@@ -137,8 +141,19 @@ def truth_from_scenario_file(path: Path) -> dict[str, VesselTruth]:
     out = {}
     for name, tr, own in vessels:
         s = tr.state_at(tr.time)
-        out[name] = VesselTruth(name, tr.time.copy(), s.north, s.east, np.zeros_like(s.north), s.heading,
-                                s.v_north, s.v_east, s.yaw_rate, ownship=own, source=str(path))
+        out[name] = VesselTruth(
+            name,
+            tr.time.copy(),
+            s.north,
+            s.east,
+            np.zeros_like(s.north),
+            s.heading,
+            s.v_north,
+            s.v_east,
+            s.yaw_rate,
+            ownship=own,
+            source=str(path),
+        )
     return out
 
 
@@ -166,8 +181,7 @@ def truth_from_recording(path: str | os.PathLike[str]) -> TruthSet:
 
     with open_bag(path) as rec:
         vessels = recording_truth(rec)
-    out = {name: TruthTrack(name, v.time, v.north, v.east, source=str(path))
-           for name, v in vessels.items() if not v.ownship}
+    out = {name: TruthTrack(name, v.time, v.north, v.east, source=str(path)) for name, v in vessels.items() if not v.ownship}
     if not out:
         raise InputError(path, f"the recording has no target ground truth (vessels: {sorted(vessels)})")
     return TruthSet(out, source=str(path))

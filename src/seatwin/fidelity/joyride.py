@@ -77,8 +77,9 @@ def _count_invalid(path: str | Path, kept: list[NDArray[np.float64]]) -> int:
     return int(sum(np.asarray(c).reshape(-1, 2).shape[0] if np.asarray(c).size else 0 for c in cells) - sum(len(k) for k in kept))
 
 
-def heading_from_velocity(v_north: NDArray[np.float64], v_east: NDArray[np.float64],
-                          min_speed: float = MIN_SPEED) -> NDArray[np.float64]:
+def heading_from_velocity(
+    v_north: NDArray[np.float64], v_east: NDArray[np.float64], min_speed: float = MIN_SPEED
+) -> NDArray[np.float64]:
     """Course over ground [rad], held while slower than ``min_speed`` (0 until the first fast sample)."""
     h = np.arctan2(v_east, v_north)
     fast = np.hypot(v_north, v_east) >= min_speed
@@ -112,8 +113,9 @@ def replica_scene(data: JoyrideData, target_size: tuple[float, float, float] = T
     return Scene([], vessels)
 
 
-def simulate_replica(data: JoyrideData, model: RadarModel, scene: Scene | None = None,
-                     indices: Sequence[int] | None = None) -> list[RadarScan]:
+def simulate_replica(
+    data: JoyrideData, model: RadarModel, scene: Scene | None = None, indices: Sequence[int] | None = None
+) -> list[RadarScan]:
     """The radar model's scans at the dataset's scan times (all, or the increasing scan ``indices``).
 
     Through the one simulation loop (:func:`seatwin.sim.loop.frames`) with a
@@ -170,7 +172,9 @@ def antenna_positions(data: JoyrideData, config: RadarConfig) -> NDArray[np.floa
     """North/east of the radar antenna at each scan: the ownship's position plus ``config``'s mount,
     turned by the heading from velocity."""
     h = heading_from_velocity(data.ownship[:, 1], data.ownship[:, 3])
-    return data.ownship[:, [0, 2]] + np.column_stack([
-        config.mount_x_m * np.cos(h) - config.mount_y_m * np.sin(h),
-        config.mount_x_m * np.sin(h) + config.mount_y_m * np.cos(h),
-    ])
+    return data.ownship[:, [0, 2]] + np.column_stack(
+        [
+            config.mount_x_m * np.cos(h) - config.mount_y_m * np.sin(h),
+            config.mount_x_m * np.sin(h) + config.mount_y_m * np.cos(h),
+        ]
+    )

@@ -66,8 +66,9 @@ def truth_of(data: JoyrideData) -> TruthSet:
     return TruthSet({TARGET: tr}, data.source)
 
 
-def block_bootstrap_ci(values: list[NDArray[np.float64]], n_boot: int, block: int, seed: int = 0,
-                       level: float = 0.95) -> tuple[float, float]:
+def block_bootstrap_ci(
+    values: list[NDArray[np.float64]], n_boot: int, block: int, seed: int = 0, level: float = 0.95
+) -> tuple[float, float]:
     """Percentile interval of the mean of all ``values`` (one array per seed, in time order)
     under a circular block bootstrap within each array (blocks of ``block`` consecutive values)."""
     from seatwin.rng import frame_rng
@@ -102,17 +103,28 @@ def window_stats(series: ComparisonSeries, window: tuple[float, float], seed: in
     hed = series.hed[common]
     cd = series.covdiff[common]
     return WindowStats(
-        hed=hed, hed_printed=series.hed_other[common], covdiff=cd, time=series.time[common],
-        ahed=float(np.mean(hed)) if len(hed) else None, mean_covdiff=float(np.mean(cd)) if len(cd) else None,
-        n_common=int(common.sum()), n_only_real=int(only_r.sum()), n_only_synthetic=int(only_s.sum()),
-        only_real_times=series.time[only_r].tolist(), only_synthetic_times=series.time[only_s].tolist(),
-        nees_real=series.nees_real[common], nees_synthetic=series.nees_synthetic[common],
-        rmse_real=series.rmse_real[common], rmse_synthetic=series.rmse_synthetic[common], seed=seed,
+        hed=hed,
+        hed_printed=series.hed_other[common],
+        covdiff=cd,
+        time=series.time[common],
+        ahed=float(np.mean(hed)) if len(hed) else None,
+        mean_covdiff=float(np.mean(cd)) if len(cd) else None,
+        n_common=int(common.sum()),
+        n_only_real=int(only_r.sum()),
+        n_only_synthetic=int(only_s.sum()),
+        only_real_times=series.time[only_r].tolist(),
+        only_synthetic_times=series.time[only_s].tolist(),
+        nees_real=series.nees_real[common],
+        nees_synthetic=series.nees_synthetic[common],
+        rmse_real=series.rmse_real[common],
+        rmse_synthetic=series.rmse_synthetic[common],
+        seed=seed,
     )
 
 
-def plot_statistics(data: JoyrideData, plots: list[NDArray[np.float64]], idx: NDArray[np.int64],
-                    gate_m: float = 60.0) -> PlotStatistics:
+def plot_statistics(
+    data: JoyrideData, plots: list[NDArray[np.float64]], idx: NDArray[np.int64], gate_m: float = 60.0
+) -> PlotStatistics:
     """Simple statistics of a recording over scans ``idx``: plots per scan, target detection rate, clutter per scan."""
     n_pl, det, clut = 0, 0, 0
     for k in idx:
@@ -138,18 +150,22 @@ def off_target_tracks(tracks: Tracks, data: JoyrideData, window: tuple[float, fl
     return OffTarget(int(len(np.unique(ids))), int(off.sum()))
 
 
-def floor_stats(synthetic: list[Tracks], seed0: int, truth: TruthSet, window: tuple[float, float],
-                tuning: str) -> list[WindowStats]:
+def floor_stats(
+    synthetic: list[Tracks], seed0: int, truth: TruthSet, window: tuple[float, float], tuning: str
+) -> list[WindowStats]:
     """The method's floor: the synthetic recordings of seeds s and s+1 (``synthetic[s - seed0]``) compared
     as if the first were real — the distance that independent noise alone produces."""
     from seatwin.evaluation import CompareOptions, compare
 
-    return [window_stats(compare(a, b, truth, tuning, CompareOptions()).series[TARGET], window, seed0 + k + 1)
-            for k, (a, b) in enumerate(zip(synthetic, synthetic[1:]))]
+    return [
+        window_stats(compare(a, b, truth, tuning, CompareOptions()).series[TARGET], window, seed0 + k + 1)
+        for k, (a, b) in enumerate(zip(synthetic, synthetic[1:]))
+    ]
 
 
-def _agent_result(runs: list[WindowStats], floor: list[WindowStats], off_synthetic: list[OffTarget], off_real: OffTarget,
-                  opts: FidelityOptions) -> AgentResult:
+def _agent_result(
+    runs: list[WindowStats], floor: list[WindowStats], off_synthetic: list[OffTarget], off_real: OffTarget, opts: FidelityOptions
+) -> AgentResult:
     """Pool one agent's seeds: AHED over every common instant, its block-bootstrap interval, the floor."""
     vals = [r.ahed for r in runs if r.ahed is not None]
     ci = block_bootstrap_ci([r.hed for r in runs], opts.n_boot, opts.block, seed=opts.seed0)
@@ -184,9 +200,16 @@ def _agent_result(runs: list[WindowStats], floor: list[WindowStats], off_synthet
     )
 
 
-def evaluate_model(data: JoyrideData, config: RadarConfig, opts: FidelityOptions, window: tuple[float, float],
-                   real_tracks: dict[str, Tracks], tuning: TrackerConfig, scene: Scene | None = None,
-                   label: str = "") -> ModelResult:
+def evaluate_model(
+    data: JoyrideData,
+    config: RadarConfig,
+    opts: FidelityOptions,
+    window: tuple[float, float],
+    real_tracks: dict[str, Tracks],
+    tuning: TrackerConfig,
+    scene: Scene | None = None,
+    label: str = "",
+) -> ModelResult:
     """Simulate ``opts.seeds`` synthetic recordings with radar ``config``; AHED per agent in ``window``."""
     from seatwin.evaluation import CompareOptions, compare
     from seatwin.sensors.radar.model import RadarModel
@@ -217,8 +240,9 @@ def evaluate_model(data: JoyrideData, config: RadarConfig, opts: FidelityOptions
             runs[agent].append(window_stats(comp.series[TARGET], window, seed))
     for agent in opts.agents:
         floor = floor_stats(synth_tracks[agent], opts.seed0, truth, window, opts.tuning)
-        result.agents[agent] = _agent_result(runs[agent], floor, off_target[agent],
-                                             off_target_tracks(real_tracks[agent], data, window), opts)
+        result.agents[agent] = _agent_result(
+            runs[agent], floor, off_target[agent], off_target_tracks(real_tracks[agent], data, window), opts
+        )
     return result
 
 
@@ -281,8 +305,9 @@ def run_fidelity(path: str, options: FidelityOptions | None = None, **changes: o
             "scan_posing": f"radar pose_at={base.pose_at!r} ('scan': world posed once per scan at its stamp)",
         },
         radar_fit=fit_report,
-        models={label: evaluate_model(data, cfg, opts, window, real_tracks, tuning, scene, label)
-                for label, cfg in models.items()},
+        models={
+            label: evaluate_model(data, cfg, opts, window, real_tracks, tuning, scene, label) for label, cfg in models.items()
+        },
         primary_model="fitted" if "fitted" in models else "default",
         primary_agent=opts.agents[0],
         real_tracks=real_tracks,

@@ -17,8 +17,10 @@ class FidelityOptions(Settings):
 
     tuning: str = Field("joyride", description="Tracker tuning on both datasets (preset or tuning file).")
     fit_on: Literal["none", "first-half", "all"] = Field(
-        "none", description="Fit the radar model on: none (the default model), first-half (AHED then on the second "
-                            "half only: no peeking) or all (for reference).")
+        "none",
+        description="Fit the radar model on: none (the default model), first-half (AHED then on the second "
+        "half only: no peeking) or all (for reference).",
+    )
     seeds: int = Field(5, ge=1, description="Synthetic recordings (seeds) compared with the real one.")
     n_boot: int = Field(1000, ge=1, description="Bootstrap resamples of the AHED interval.")
     block: int = Field(10, ge=1, description="Bootstrap block length [instants] (HED is autocorrelated over a few scans).")
@@ -26,11 +28,14 @@ class FidelityOptions(Settings):
     radar: str | None = Field(None, description="Radar YAML to start from (default: the built-in default model).")
     clutter: Literal["uniform", "map"] = Field("uniform", description="Clutter form of the fit.")
     agents: tuple[Literal["jipda", "gnn"], ...] = Field(
-        AGENTS, min_length=1, description="Trackers, both with the same EKF and tuning (the first is the headline).")
+        AGENTS, min_length=1, description="Trackers, both with the same EKF and tuning (the first is the headline)."
+    )
     seed0: int = Field(0, description="First seed (seeds are seed0 … seed0 + seeds − 1).")
     calibrate_bias: bool = Field(
-        False, description="Set the tuning's radar bearing_bias to the fitted bearing bias (both datasets, every "
-                           "model; estimated on the fit's scans only, so no peeking with first-half).")
+        False,
+        description="Set the tuning's radar bearing_bias to the fitted bearing bias (both datasets, every "
+        "model; estimated on the fit's scans only, so no peeking with first-half).",
+    )
 
     @field_validator("agents")
     @classmethod

@@ -41,17 +41,29 @@ def radar_observations(recording: Path, truth: str | None, base: RadarConfig, fi
         times = np.array([s.time for s in scans])
         states = ts.states_at(times)  # (J, n, 4)
         obs = RadarObservations(
-            times, [s.positions() for s in scans], np.array([s.sensor_position for s in scans]),
-            np.transpose(states[:, :, [0, 2]], (1, 0, 2)), base.detection.area_ref_m2, str(recording),
+            times,
+            [s.positions() for s in scans],
+            np.array([s.sensor_position for s in scans]),
+            np.transpose(states[:, :, [0, 2]], (1, 0, 2)),
+            base.detection.area_ref_m2,
+            str(recording),
         )
     if first_half:
         obs = obs.subset(np.arange(len(obs) // 2))
     return obs
 
 
-def fit_radar_to_recording(recording: str | Path, *, truth: str | None = None, base: str | Path | None = None,
-                           first_half: bool = False, gate: float = 60.0, boot: int = 200, clutter: str = "uniform",
-                           seed: int = 0) -> tuple[RadarFit, RadarObservations]:
+def fit_radar_to_recording(
+    recording: str | Path,
+    *,
+    truth: str | None = None,
+    base: str | Path | None = None,
+    first_half: bool = False,
+    gate: float = 60.0,
+    boot: int = 200,
+    clutter: str = "uniform",
+    seed: int = 0,
+) -> tuple[RadarFit, RadarObservations]:
     """Fit the radar model (starting from ``base`` or the built-in one) to a real recording's statistics."""
     from seatwin.sensors.radar.config import RadarConfig, load_radar_config
     from seatwin.sensors.radar.fit import fit_radar

@@ -50,8 +50,11 @@ def diagnosis(result: FidelityResult) -> list[str]:
     if ahed and cd is not None:
         out.append(
             f"Mean COVDIFF {cd:.3f} against AHED {ahed:.3f}: the covariances of the two trackers agree "
-            + ("closely; the distance is driven by the difference of the means (the NEES term of (5.30))."
-               if cd < 0.5 * ahed else "only partly; covariance differences are a large share of the distance.")
+            + (
+                "closely; the distance is driven by the difference of the means (the NEES term of (5.30))."
+                if cd < 0.5 * ahed
+                else "only partly; covariance differences are a large share of the distance."
+            )
         )
     n_c, n_r, n_s = prim.n_common, prim.n_only_real, prim.n_only_synthetic
     out.append(
@@ -77,11 +80,14 @@ def diagnosis(result: FidelityResult) -> list[str]:
         parts = []
         for label, m in models.items():
             d = m.agents[result.primary_agent]
-            parts.append(f"{label}: AHED {_f(d.ahed)}, floor {_f(d.floor_ahed)}, "
-                         f"only-one-dataset fraction {d.only_one_fraction:.2f}")
-        out.append("By radar model — " + "; ".join(parts) + ". AHED alone can favour a model whose tracks exist at "
-                   "different times than the real ones (it averages over common instants only); read it together "
-                   "with the floor and the only-one fraction.")
+            parts.append(
+                f"{label}: AHED {_f(d.ahed)}, floor {_f(d.floor_ahed)}, only-one-dataset fraction {d.only_one_fraction:.2f}"
+            )
+        out.append(
+            "By radar model — " + "; ".join(parts) + ". AHED alone can favour a model whose tracks exist at "
+            "different times than the real ones (it averages over common instants only); read it together "
+            "with the floor and the only-one fraction."
+        )
     agents = result.models[result.primary_model].agents
     if len(agents) > 1:
         vals = {k: v.ahed for k, v in agents.items() if v.ahed is not None}
@@ -90,8 +96,8 @@ def diagnosis(result: FidelityResult) -> list[str]:
             txt = ", ".join(f"{k} {v:.3f}" for k, v in vals.items())
             out.append(
                 f"The two agents agree ({txt}): the distance is a property of the data, not of one tracker."
-                if spread < 0.1 else
-                f"The two agents disagree ({txt}): the distance depends on the tracker, so it measures how "
+                if spread < 0.1
+                else f"The two agents disagree ({txt}): the distance depends on the tracker, so it measures how "
                 "each tracker reacts to the differences (e.g. clutter, missed detections) more than the data alone."
             )
     return out
@@ -124,8 +130,13 @@ def render_markdown(result: FidelityResult) -> str:
                 f"{_f(d.n_only_real, '.1f')} | {_f(d.n_only_synthetic, '.1f')} | "
                 f"{d.off_target_instants_real} / {_f(d.off_target_instants_synthetic, '.1f')} |"
             )
-    lines += ["", "## Recordings compared (evaluation window)", "",
-              "| recording | plots / scan | target detection rate | clutter plots / scan |", "|---|---:|---:|---:|"]
+    lines += [
+        "",
+        "## Recordings compared (evaluation window)",
+        "",
+        "| recording | plots / scan | target detection rate | clutter plots / scan |",
+        "|---|---:|---:|---:|",
+    ]
     rs = result.real_statistics
     lines.append(f"| real | {rs.plots_per_scan:.2f} | {rs.detection_rate:.2f} | {rs.clutter_per_scan:.2f} |")
     for label, m in result.models.items():
@@ -133,29 +144,46 @@ def render_markdown(result: FidelityResult) -> str:
         lines.append(f"| synthetic ({label}) | {s.plots_per_scan:.2f} | {s.detection_rate:.2f} | {s.clutter_per_scan:.2f} |")
     fit = result.radar_fit
     if fit:
-        lines += ["", f"## Radar fit ({fit['n_scans']} scans, bootstrap n = {fit['n_boot']})", "",
-                  "| parameter | estimate | std. error | 95 % CI |", "|---|---:|---:|---|"]
+        lines += [
+            "",
+            f"## Radar fit ({fit['n_scans']} scans, bootstrap n = {fit['n_boot']})",
+            "",
+            "| parameter | estimate | std. error | 95 % CI |",
+            "|---|---:|---:|---|",
+        ]
         for k, v in fit["estimates"].items():
             ci = _ci(v["ci95"]) if v["ci95"][0] is not None else "–"
             lines.append(f"| {k} | {_f(v['estimate'], '.4g')} | {_f(v['se'], '.3g')} | {ci} |")
         lines += [f"\nNote: {n}" for n in fit.get("notes", [])]
-        lines += ["", "Detection rate against range (Wilson 95 % interval) and the fitted model:", "",
-                  "| range [m] | scans | rate | 95 % CI | model |", "|---|---:|---:|---|---:|"]
+        lines += [
+            "",
+            "Detection rate against range (Wilson 95 % interval) and the fitted model:",
+            "",
+            "| range [m] | scans | rate | 95 % CI | model |",
+            "|---|---:|---:|---|---:|",
+        ]
         for row in fit["detection_vs_range"]:
-            lines.append(f"| {row['range_m'][0]:.0f}–{row['range_m'][1]:.0f} | {row['scans']} | {row['rate']:.2f} | "
-                         f"{_ci(row['wilson95'])} | {row['model']:.2f} |")
+            lines.append(
+                f"| {row['range_m'][0]:.0f}–{row['range_m'][1]:.0f} | {row['scans']} | {row['rate']:.2f} | "
+                f"{_ci(row['wilson95'])} | {row['model']:.2f} |"
+            )
     lines += ["", "## What drives the remaining distance", ""]
     lines += [f"* {d}" for d in diagnosis(result)]
-    lines += ["", "## Conventions and assumptions", "",
-              "* HED (5.30, standard form), COVDIFF (5.31), AHED (5.34) over the instants where both datasets have a "
-              "confirmed track on the target (track-to-truth gate of the evaluation module); AHED's interval: "
-              "circular block bootstrap (blocks of up to 10 consecutive instants, at most a third of a series, "
-              "pooled over seeds).",
-              "* Floor: the same comparison between two synthetic recordings of the same model (seeds s, s+1).",
-              "* Headings from velocity (the dataset has none); target box size assumed; world posed once per scan.",
-              "* `n_common`, `n_only_real`, `n_only_synthetic` are means over seeds.",
-              "* `index.html` (the comparison report) shows seed 0 of each model over the whole recording; the "
-              "evaluation window's figures are the ones above.", ""]
+    lines += [
+        "",
+        "## Conventions and assumptions",
+        "",
+        "* HED (5.30, standard form), COVDIFF (5.31), AHED (5.34) over the instants where both datasets have a "
+        "confirmed track on the target (track-to-truth gate of the evaluation module); AHED's interval: "
+        "circular block bootstrap (blocks of up to 10 consecutive instants, at most a third of a series, "
+        "pooled over seeds).",
+        "* Floor: the same comparison between two synthetic recordings of the same model (seeds s, s+1).",
+        "* Headings from velocity (the dataset has none); target box size assumed; world posed once per scan.",
+        "* `n_common`, `n_only_real`, `n_only_synthetic` are means over seeds.",
+        "* `index.html` (the comparison report) shows seed 0 of each model over the whole recording; the "
+        "evaluation window's figures are the ones above.",
+        "",
+    ]
     return "\n".join(lines)
 
 
@@ -183,8 +211,14 @@ def _html(out: Path, result: FidelityResult) -> Path:
         clouds = []
         if m.example_plots is not None:
             for k in np.linspace(0, len(data) - 1, 3).astype(int):
-                clouds.append(Clouds(float(data.time[k]), data.plots[k], m.example_plots[k],
-                                     ownship=(float(data.ownship[k, 0]), float(data.ownship[k, 2])),
-                                     targets=[("target", float(data.target[k, 0]), float(data.target[k, 2]))]))
+                clouds.append(
+                    Clouds(
+                        float(data.time[k]),
+                        data.plots[k],
+                        m.example_plots[k],
+                        ownship=(float(data.ownship[k, 0]), float(data.ownship[k, 2])),
+                        targets=[("target", float(data.target[k, 0]), float(data.target[k, 2]))],
+                    )
+                )
         results.append(ScenarioResult(f"joyride, {label} radar model (seed {result.seed0})", comps, truth, clouds))
     return write_report(out, results, title="seatwin fidelity: joyride real versus synthetic radar")

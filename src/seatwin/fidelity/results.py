@@ -75,8 +75,7 @@ class SeedResult:
 
     @classmethod
     def of(cls, s: WindowStats) -> SeedResult:
-        return cls(s.ahed, s.n_common, s.n_only_real, s.n_only_synthetic, s.only_real_times, s.only_synthetic_times,
-                   s.seed)
+        return cls(s.ahed, s.n_common, s.n_only_real, s.n_only_synthetic, s.only_real_times, s.only_synthetic_times, s.seed)
 
 
 @dataclass(frozen=True)
@@ -138,8 +137,11 @@ class ModelResult:
         return PlotStatistics.mean(self.synthetic_statistics)
 
     def to_json(self) -> dict[str, Any]:
-        return {"agents": {a: asdict(d) for a, d in self.agents.items()},
-                "synthetic_statistics_mean": asdict(self.synthetic_statistics_mean), "radar": self.radar}
+        return {
+            "agents": {a: asdict(d) for a, d in self.agents.items()},
+            "synthetic_statistics_mean": asdict(self.synthetic_statistics_mean),
+            "radar": self.radar,
+        }
 
 
 @dataclass

@@ -109,9 +109,7 @@ def ned_to_llh_flat(
     """Inverse of :func:`llh_to_ned_flat` (MSS ``flat2llh``)."""
     r_m, r_n = _radii(origin, meridian)
     lat = origin.lat_deg + np.degrees(np.asarray(north, float) * np.arctan2(1.0, r_m))
-    lon = origin.lon_deg + np.degrees(
-        np.asarray(east, float) * np.arctan2(1.0, r_n * np.cos(np.radians(origin.lat_deg)))
-    )
+    lon = origin.lon_deg + np.degrees(np.asarray(east, float) * np.arctan2(1.0, r_n * np.cos(np.radians(origin.lat_deg))))
     height = origin.height_m - np.asarray(down, float)
     return lat, lon, height
 

@@ -122,6 +122,4 @@ def validate_log(log: AntennaLog) -> None:
     if bad.size:
         i = int(bad[0]) + 1
         kind = "duplicated" if steps[i - 1] == 0 else "decreasing (non-monotonic)"
-        raise InputError(
-            log.source, f"{kind} time {log.time[i]!r} after {log.time[i - 1]!r}", where=_where(log, i)
-        )
+        raise InputError(log.source, f"{kind} time {log.time[i]!r} after {log.time[i - 1]!r}", where=_where(log, i))

@@ -53,9 +53,7 @@ class GroundTruthResult:
 
     def scenario(self, name: str = "groundtruth", ownship: str | None = None) -> Scenario:
         """A :class:`Scenario` of the vessels (all targets, except ``ownship`` if named)."""
-        vessels = [
-            Vessel(v.name, Role.OWNSHIP if v.name == ownship else Role.TARGET, v.trajectory()) for v in self.vessels
-        ]
+        vessels = [Vessel(v.name, Role.OWNSHIP if v.name == ownship else Role.TARGET, v.trajectory()) for v in self.vessels]
         return Scenario(name, vessels, origin=self.origin, rig=None, source=name)
 
 
@@ -103,8 +101,13 @@ def compute_ground_truth(
         antennas = [resample_log(logs[f], time, max_gap_s) for f in spec.files]
         truths.append(
             build_vessel(
-                spec, antennas, origin, meridian=meridian, eps_threshold_m=eps_threshold_m,
-                smooth_s=smooth_s, min_cog_speed=min_cog_speed,
+                spec,
+                antennas,
+                origin,
+                meridian=meridian,
+                eps_threshold_m=eps_threshold_m,
+                smooth_s=smooth_s,
+                min_cog_speed=min_cog_speed,
             )  # fmt: skip
         )
     return GroundTruthResult(origin, float(rate_hz), meridian, float(max_gap_s), time, truths)

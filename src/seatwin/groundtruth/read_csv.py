@@ -38,7 +38,7 @@ def _parse_time(text: str, path: Path, where: str) -> float:
     except ValueError:
         raise InputError(path, f"expected POSIX seconds or an ISO 8601 time, got {text!r}", where=where) from None
     if t.tzinfo is None:
-        t = t.replace(tzinfo=dt.timezone.utc)
+        t = t.replace(tzinfo=dt.UTC)
     return t.timestamp()
 
 
@@ -69,7 +69,11 @@ def read_csv_log(path: str | Path) -> AntennaLog:
     if _looks_like_data(first[0]):
         width = len(first)
         if width not in (3, 4):
-            raise InputError(path, f"without a header line expected 3 or 4 columns (time, lat, lon[, height]), got {width}", where=f"line {first_no}")
+            raise InputError(
+                path,
+                f"without a header line expected 3 or 4 columns (time, lat, lon[, height]), got {width}",
+                where=f"line {first_no}",
+            )
         cols = {"time": 0, "lat": 1, "lon": 2} | ({"height": 3} if width == 4 else {})
         header = ["time", "lat", "lon", "height"][:width]
         data = numbered
@@ -86,7 +90,9 @@ def read_csv_log(path: str | Path) -> AntennaLog:
         missing = [k for k in ("time", "lat", "lon") if k not in cols]
         if missing:
             raise InputError(
-                path, f"no {', '.join(missing)} column in header {first}; expected e.g. time,lat,lon,height", where=f"line {first_no}"
+                path,
+                f"no {', '.join(missing)} column in header {first}; expected e.g. time,lat,lon,height",
+                where=f"line {first_no}",
             )
         data = numbered[1:]
     if len(data) < 2:

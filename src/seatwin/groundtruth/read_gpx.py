@@ -58,7 +58,7 @@ def read_gpx(path: str | Path) -> AntennaLog:
     for i, p in enumerate(points):
         if p.time is None:
             raise InputError(path, "track point without a valid <time> (expected ISO 8601 UTC)", where=where(i))
-        t = p.time if p.time.tzinfo is not None else p.time.replace(tzinfo=dt.timezone.utc)
+        t = p.time if p.time.tzinfo is not None else p.time.replace(tzinfo=dt.UTC)
         time[i] = t.timestamp()
     elev = [p.elevation for p in points]
     n_missing = sum(e is None for e in elev)

@@ -56,9 +56,7 @@ def _split(line: str, path: Path, line_no: int) -> tuple[str, list[str]] | None:
         raise InputError(path, f"checksum must be two hex digits, got {given!r}", where=f"line {line_no}") from None
     actual = nmea_checksum(body)
     if actual != expected:
-        raise InputError(
-            path, f"checksum mismatch: sentence says {expected:02X}, computed {actual:02X}", where=f"line {line_no}"
-        )
+        raise InputError(path, f"checksum mismatch: sentence says {expected:02X}, computed {actual:02X}", where=f"line {line_no}")
     return kind, body.split(",")[1:]
 
 
@@ -157,7 +155,9 @@ def read_nmea(path: str | Path, date: dt.date | None = None) -> AntennaLog:
             try:
                 d, mo, y = int(f[1]), int(f[2]), int(f[3])
             except ValueError:
-                raise InputError(path, f"expected ZDA day,month,year, got {','.join(f[1:4])!r}", where=f"line {line_no}") from None
+                raise InputError(
+                    path, f"expected ZDA day,month,year, got {','.join(f[1:4])!r}", where=f"line {line_no}"
+                ) from None
             dates.append((_date(d, mo, y, path, line_no), tod))
 
     if not fixes:

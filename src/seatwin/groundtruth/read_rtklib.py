@@ -27,15 +27,15 @@ def _header_layout(header: str, path: Path, line_no: int) -> tuple[str, bool]:
     tokens = header.lstrip("%").split()
     system = tokens[0].upper() if tokens else ""
     if system not in ("GPST", "UTC", "JST"):
-        raise InputError(path, f"unknown time system {tokens[0] if tokens else ''!r}, expected GPST, UTC or JST", where=f"line {line_no}")
+        raise InputError(
+            path, f"unknown time system {tokens[0] if tokens else ''!r}, expected GPST, UTC or JST", where=f"line {line_no}"
+        )
     low = header.lower()
     if "latitude(deg)" in low:
         return system, False
     if "latitude(d" in low:
         return system, True
-    raise InputError(
-        path, "expected RTKLIB llh output (latitude/longitude/height), not xyz-ecef or enu", where=f"line {line_no}"
-    )
+    raise InputError(path, "expected RTKLIB llh output (latitude/longitude/height), not xyz-ecef or enu", where=f"line {line_no}")
 
 
 def _number(tok: str, name: str, path: Path, line_no: int) -> float:
@@ -90,7 +90,9 @@ def read_rtklib_pos(path: str | Path) -> AntennaLog:
         toks = line.split()
         need = 2 + (6 if dms else 2) + 2  # time, lat, lon, height, Q
         if len(toks) < need:
-            raise InputError(path, f"expected at least {need} columns (time, lat, lon, height, Q), got {len(toks)}", where=f"line {line_no}")
+            raise InputError(
+                path, f"expected at least {need} columns (time, lat, lon, height, Q), got {len(toks)}", where=f"line {line_no}"
+            )
         t = _time(toks[0], toks[1], path, line_no)
         if dms:
             lat, lon = _dms(toks[2:5], "latitude", path, line_no), _dms(toks[5:8], "longitude", path, line_no)

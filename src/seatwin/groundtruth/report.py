@@ -42,9 +42,7 @@ def vessel_report(number: int, v: VesselGroundTruth) -> dict[str, Any]:
                 "end_posix": a.log.end,
                 "median_fix_interval_s": float(np.median(np.diff(a.log.time))),
                 "fix_quality_counts": a.log.quality_counts(),
-                "resampled_fix_quality_counts": (
-                    None if a.quality is None else _named_counts(a.log.quality_scheme, a.quality)
-                ),
+                "resampled_fix_quality_counts": (None if a.quality is None else _named_counts(a.log.quality_scheme, a.quality)),
                 "skipped_records": dict(a.log.skipped),
                 "samples_across_gaps": int(a.gap.sum()),
             }

@@ -165,6 +165,4 @@ def build_vessel(
     flags[~ok] |= FLAG_LOW_SPEED
     heading = _fill_low_speed(time, course_over_ground(v_n, v_e), ok)
     settings["min_cog_speed"] = min_cog_speed
-    return VesselGroundTruth(
-        spec.name, time, north, east, heading, v_n, v_e, HEADING_COG, flags, antennas, settings=settings
-    )
+    return VesselGroundTruth(spec.name, time, north, east, heading, v_n, v_e, HEADING_COG, flags, antennas, settings=settings)

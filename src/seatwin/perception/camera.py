@@ -22,7 +22,13 @@ def pixel_bearing(u: ArrayLike, fx: float, cx: float) -> np.ndarray:
 
 
 def camera_scan(
-    u: ArrayLike, time: float, fx: float, cx: float, axis_bearing: float, sensor_north: float, sensor_east: float,
+    u: ArrayLike,
+    time: float,
+    fx: float,
+    cx: float,
+    axis_bearing: float,
+    sensor_north: float,
+    sensor_east: float,
     sensor: str = "camera",
 ) -> Scan:
     """Bearings of detections at pixel columns ``u`` for a camera whose optical axis points at ``axis_bearing``."""

@@ -29,7 +29,9 @@ def cluster_labels(points: NDArray[np.float64], eps: float, min_points: int = 1)
     return remap[labels]
 
 
-def cluster_centroids(points: NDArray[np.float64], eps: float, min_points: int = 1) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+def cluster_centroids(
+    points: NDArray[np.float64], eps: float, min_points: int = 1
+) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
     """Centroids (K, dim) of the clusters and their point counts (K,)."""
     labels = cluster_labels(points, eps, min_points)
     ok = labels >= 0

@@ -66,8 +66,10 @@ def read_joyride(path: str | os.PathLike[str]) -> RadarDataset:
     target = np.asarray(d["target"], float)
     tel = np.asarray(d["telemetron"], float)
     if meas.size != k or target.shape != (k, 4) or tel.shape != (k, 4):
-        raise InputError(p, f"expected {k} scans: measurements {k}×1, target and telemetron {k}×4; got "
-                            f"{meas.shape}, {target.shape}, {tel.shape}")
+        raise InputError(
+            p,
+            f"expected {k} scans: measurements {k}×1, target and telemetron {k}×4; got {meas.shape}, {target.shape}, {tel.shape}",
+        )
     if not np.all(np.diff(time) > 0):
         raise InputError(p, "scan times must increase", where="time")
     plots = []
@@ -88,7 +90,7 @@ def read_ravnkloa_radar(path: str | os.PathLike[str]) -> RadarDataset:
     if not p.is_file():
         raise InputError(p, "no such file")
     try:
-        start = dt.datetime.strptime(p.stem, "%Y-%m-%d-%H-%M-%S").replace(tzinfo=dt.timezone.utc).timestamp()
+        start = dt.datetime.strptime(p.stem, "%Y-%m-%d-%H-%M-%S").replace(tzinfo=dt.UTC).timestamp()
     except ValueError:
         raise InputError(p, "expected a file name YYYY-MM-DD-HH-MM-SS.csv (the recording start)") from None
     rows: list[tuple[float, float, float]] = []
@@ -146,14 +148,22 @@ def _course(x: Array) -> float:
 def import_joyride(mat: str | os.PathLike[str], out: str | os.PathLike[str], fmt: str = "mcap") -> str:
     """Write the joyride dataset as a recording in ``out``; returns a one-line summary."""
     ds = read_joyride(mat)
-    meta = {"dataset": "joyride", "source": str(mat), "licence": "CC0",
-            "note": "radar plots in the world NED frame of the dataset; headings are courses over ground",
-            "tracking": {"tuning": "joyride", "map": "none", "radar_merge": 0.0}}
+    meta = {
+        "dataset": "joyride",
+        "source": str(mat),
+        "licence": "CC0",
+        "note": "radar plots in the world NED frame of the dataset; headings are courses over ground",
+        "tracking": {"tuning": "joyride", "map": "none", "radar_merge": 0.0},
+    }
     return _write(ds, out, fmt, platform="telemetron", metadata=meta)
 
 
-def import_ravnkloa_radar(csv_path: str | os.PathLike[str], out: str | os.PathLike[str], fmt: str = "mcap",
-                          map_path: str | os.PathLike[str] | None = None) -> str:
+def import_ravnkloa_radar(
+    csv_path: str | os.PathLike[str],
+    out: str | os.PathLike[str],
+    fmt: str = "mcap",
+    map_path: str | os.PathLike[str] | None = None,
+) -> str:
     """Write one Ravnkloa shore-radar CSV as a recording in ``out``; returns a one-line summary."""
     ds = read_ravnkloa_radar(csv_path)
     hints: dict = {"tuning": "ravnkloa", "radar_merge": 3.0}
@@ -162,7 +172,11 @@ def import_ravnkloa_radar(csv_path: str | os.PathLike[str], out: str | os.PathLi
         if not mp.with_suffix(".yaml").is_file():
             raise InputError(mp, "map raster not found (expected NAME.yaml beside NAME.bin)")
         hints["map"] = str(mp.resolve())
-    meta = {"dataset": "ravnkloa-radar-2023", "source": str(csv_path), "licence": "CC0",
-            "note": "shore radar recorded as a stationary ownship; times = file name (UTC) + scan_time_s",
-            "tracking": hints}
+    meta = {
+        "dataset": "ravnkloa-radar-2023",
+        "source": str(csv_path),
+        "licence": "CC0",
+        "note": "shore radar recorded as a stationary ownship; times = file name (UTC) + scan_time_s",
+        "tracking": hints,
+    }
     return _write(ds, out, fmt, platform="ravnkloa_radar", metadata=meta)

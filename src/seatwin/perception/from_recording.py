@@ -40,8 +40,14 @@ class OwnshipTrajectory:
     @classmethod
     def from_truth(cls, truth: Any) -> OwnshipTrajectory:
         order = np.argsort(truth.time, kind="stable")
-        return cls(truth.time[order], truth.north[order], truth.east[order], truth.down[order],
-                   np.unwrap(truth.heading[order]), truth.name)
+        return cls(
+            truth.time[order],
+            truth.north[order],
+            truth.east[order],
+            truth.down[order],
+            np.unwrap(truth.heading[order]),
+            truth.name,
+        )
 
     def pose_at(self, t: float) -> tuple[float, float, float, float]:
         """(north, east, down, heading) at ``t`` (held constant outside the recorded span)."""
@@ -93,8 +99,11 @@ def scans_from_recording(
         if s not in SENSORS:
             raise ParameterError("sensors", f"unknown sensor {s!r}; expected some of {', '.join(SENSORS)}")
     if "camera" in sensors:
-        raise ParameterError("sensors", "camera: the bearing measurement model is in place, but the camera detector "
-                                      "(images → bearings) is not part of seatwin yet; use lidar and/or radar")
+        raise ParameterError(
+            "sensors",
+            "camera: the bearing measurement model is in place, but the camera detector "
+            "(images → bearings) is not part of seatwin yet; use lidar and/or radar",
+        )
     mask = mask or NoMask()
     radar_topics = rec.radar_topics() if "radar" in sensors else []
     lidar_topics = []
@@ -104,16 +113,18 @@ def scans_from_recording(
     found = {"radar": radar_topics, "lidar": lidar_topics}
     wanted = radar_topics + lidar_topics
     if not wanted:
-        raise InputError(rec.path, f"no {' or '.join(sensors)} topics in this recording; it has "
-                                   f"{sorted(rec.topics)}")
+        raise InputError(rec.path, f"no {' or '.join(sensors)} topics in this recording; it has {sorted(rec.topics)}")
     total = sum(rec.topics[t].count for t in wanted)
     mounts = {st.child: Mount.from_quaternion(st.translation, st.rotation) for st in rec.static_transforms()}
     own = _ownship(rec, truth)
 
     def pose_for(frame_id: str, t: float) -> SensorPose:
         if own is None:
-            raise InputError(rec.path, "the recording has no ownship ground truth (odometry/pose topics or a scenario "
-                                       "beside it): the sensor pose in the world is unknown")
+            raise InputError(
+                rec.path,
+                "the recording has no ownship ground truth (odometry/pose topics or a scenario "
+                "beside it): the sensor pose in the world is unknown",
+            )
         n, e, d, h = own.pose_at(t)
         mount = mounts.get(frame_id)
         if mount is None:
@@ -130,8 +141,11 @@ def scans_from_recording(
                 xy = np.column_stack((np.asarray(pts["x"], float), np.asarray(pts["y"], float)))
                 if _is_world_frame(cloud.frame_id, rec):
                     if own is None:
-                        raise InputError(rec.path, "world-frame radar plots need the radar platform's position: "
-                                                   "the recording has no ownship ground truth")
+                        raise InputError(
+                            rec.path,
+                            "world-frame radar plots need the radar platform's position: "
+                            "the recording has no ownship ground truth",
+                        )
                     n, e, _, _ = own.pose_at(cloud.stamp)
                     world = xy
                 else:

@@ -67,5 +67,12 @@ def lidar_scan(
     keep[keep] = mask.is_water(world[keep, 0], world[keep, 1])
     centroids, counts = cluster_centroids(world[keep, :2], p.eps, p.min_points)
     z = cartesian_to_polar(centroids, (pose.north, pose.east))
-    return Scan(time, sensor, MeasurementKind.RANGE_BEARING, z, pose.north, pose.east,
-                extra={"cluster_sizes": counts, "n_points": int(pts.shape[0]), "n_kept": int(keep.sum())})
+    return Scan(
+        time,
+        sensor,
+        MeasurementKind.RANGE_BEARING,
+        z,
+        pose.north,
+        pose.east,
+        extra={"cluster_sizes": counts, "n_points": int(pts.shape[0]), "n_kept": int(keep.sum())},
+    )

@@ -63,8 +63,11 @@ class RasterMask:
             res = float(meta.get("grid_resolution", 1.0))
             on, oe = float(meta["origin_y_coordinate"]), float(meta["origin_x_coordinate"])
         except (yaml.YAMLError, KeyError, TypeError, ValueError) as exc:
-            raise InputError(meta_path, f"expected map_width, map_height, grid_resolution, origin_x_coordinate, "
-                                        f"origin_y_coordinate ({type(exc).__name__}: {exc})") from None
+            raise InputError(
+                meta_path,
+                f"expected map_width, map_height, grid_resolution, origin_x_coordinate, "
+                f"origin_y_coordinate ({type(exc).__name__}: {exc})",
+            ) from None
         data = np.fromfile(bin_path, dtype=np.uint8)
         if data.size != w * h:
             raise InputError(bin_path, f"expected {w}×{h} = {w * h} bytes (from {meta_path.name}), found {data.size}")

@@ -45,7 +45,9 @@ def load_run(spec: str | Path, tuning: str | None = None, keep_as: Path | None =
     return tracks
 
 
-def comparison_pairs(real: Sequence[str], synthetic: Sequence[str], tunings: Sequence[str]) -> list[tuple[str, str, str | None, str]]:
+def comparison_pairs(
+    real: Sequence[str], synthetic: Sequence[str], tunings: Sequence[str]
+) -> list[tuple[str, str, str | None, str]]:
     """(real, synthetic, tuning, label) per comparison; track files are used as given, recordings tracked per tuning."""
     if len(real) != len(synthetic):
         raise ParameterError("real", f"give as many real as synthetic datasets, got {len(real)} and {len(synthetic)}")
@@ -54,8 +56,11 @@ def comparison_pairs(real: Sequence[str], synthetic: Sequence[str], tunings: Seq
     files = [is_track_file(p) for p in [*real, *synthetic]]
     if len(real) == 1 and len(tunings) > 1:
         if any(files):
-            raise ParameterError("tunings", f"{len(tunings)} tunings but a track file was already tracked with one "
-                                            "tuning; give one real/synthetic pair per tuning, or recordings")
+            raise ParameterError(
+                "tunings",
+                f"{len(tunings)} tunings but a track file was already tracked with one "
+                "tuning; give one real/synthetic pair per tuning, or recordings",
+            )
         return [(real[0], synthetic[0], t, t) for t in tunings]
     if tunings and len(tunings) != len(real):
         raise ParameterError("tunings", f"{len(tunings)} tunings for {len(real)} real/synthetic pairs")
@@ -148,8 +153,16 @@ def compare_runs(
         from seatwin.perception.map_mask import load_mask
         from seatwin.report import write_comparison_report
 
-        clouds = [] if clouds_at is None else [_clouds(real[0], synthetic[0], clouds_at, clouds_sensor, truth_set,
-                                                        clouds_relative)]
-        result.report = write_comparison_report(report_dir, comparisons, truth_set, title=f"seatwin compare — {Path(truth).name}",
-                                                scenario=Path(truth).stem, mask=load_mask(report_map), clouds=clouds)
+        clouds = (
+            [] if clouds_at is None else [_clouds(real[0], synthetic[0], clouds_at, clouds_sensor, truth_set, clouds_relative)]
+        )
+        result.report = write_comparison_report(
+            report_dir,
+            comparisons,
+            truth_set,
+            title=f"seatwin compare — {Path(truth).name}",
+            scenario=Path(truth).stem,
+            mask=load_mask(report_map),
+            clouds=clouds,
+        )
     return result

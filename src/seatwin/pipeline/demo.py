@@ -32,8 +32,15 @@ class DemoResult:
     comparison: CompareResult
 
 
-def run_demo(out: str | Path = "runs/demo", *, scenario: str = "ferry_crossing", duration: float = 30.0, seed: int = 1,
-             step: Callable[[str], None] | None = None, progress: bool = False) -> DemoResult:
+def run_demo(
+    out: str | Path = "runs/demo",
+    *,
+    scenario: str = "ferry_crossing",
+    duration: float = 30.0,
+    seed: int = 1,
+    step: Callable[[str], None] | None = None,
+    progress: bool = False,
+) -> DemoResult:
     """Run the demo into ``out`` (refused if an earlier demo is there); ``step(title)`` announces each step."""
     from seatwin.evaluation import CompareOptions
     from seatwin.scenario.builtin import builtin_names, builtin_scenario
@@ -49,13 +56,18 @@ def run_demo(out: str | Path = "runs/demo", *, scenario: str = "ferry_crossing",
     for name in builtin_names():
         plot_scenario(builtin_scenario(name), figures / f"{name}.png")
     announce("simulate the stand-in for reality (exact ray casting, range noise, range dissipation)")
-    simulate_run(scenario, out / "reality", duration=duration, seed=seed, range_noise=0.05, dissipation=True,
-                 progress=progress)
+    simulate_run(scenario, out / "reality", duration=duration, seed=seed, range_noise=0.05, dissipation=True, progress=progress)
     announce("simulate with the thesis's depth-buffer lidar")
     simulate_run(scenario, out / "simulator", duration=duration, seed=seed, lidar_mode="depthbuffer", progress=progress)
     announce("track both with the thesis tunings and compare")
-    result = compare_runs([out / "reality"], [out / "simulator"], out / "reality", tunings=("synthetic", "real"),
-                          options=CompareOptions(), report_dir=out / "report")
+    result = compare_runs(
+        [out / "reality"],
+        [out / "simulator"],
+        out / "reality",
+        tunings=("synthetic", "real"),
+        options=CompareOptions(),
+        report_dir=out / "report",
+    )
     json_path = out / "comparison.json"
     json_path.write_text(json.dumps(result.to_json(), indent=2) + "\n")
     assert result.report is not None

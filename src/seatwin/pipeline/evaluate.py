@@ -20,12 +20,21 @@ def check_overlap(tracks: Tracks, truth: TruthSet, source: str) -> None:
     if all(t1 < a or t0 > b for a, b in spans):
         a = min(s[0] for s in spans)
         b = max(s[1] for s in spans)
-        raise InputError(source, f"the tracks span [{t0!r}, {t1!r}] s but the ground truth spans [{a!r}, {b!r}] s: "
-                                 "no common time (same clock? same scenario?)")
+        raise InputError(
+            source,
+            f"the tracks span [{t0!r}, {t1!r}] s but the ground truth spans [{a!r}, {b!r}] s: "
+            "no common time (same clock? same scenario?)",
+        )
 
 
-def evaluate_run(tracks: str | Path | Tracks, truth: str | Path | TruthSet, *, gate: float = 10.0,
-                 confirmed_only: bool = True, confidence: float = 0.95) -> Evaluation:
+def evaluate_run(
+    tracks: str | Path | Tracks,
+    truth: str | Path | TruthSet,
+    *,
+    gate: float = 10.0,
+    confirmed_only: bool = True,
+    confidence: float = 0.95,
+) -> Evaluation:
     """Per-target metrics of ``tracks`` (a track file or :class:`Tracks`) against ``truth`` (scenario, recording or set)."""
     from seatwin.evaluation import Tracks, evaluate, load_truth, read_tracks
 

@@ -28,9 +28,18 @@ class RadarSimulation:
     outputs: list[Path]
 
 
-def simulate_radar(scenario: str | Path, *, plots_csv: Path | None = None, run_dir: Path | None = None,
-                   spokes_dir: Path | None = None, radar_config: str | None = None, seed: int | None = None,
-                   start_offset: float = 0.0, duration: float | None = None, fmt: str = "mcap") -> RadarSimulation:
+def simulate_radar(
+    scenario: str | Path,
+    *,
+    plots_csv: Path | None = None,
+    run_dir: Path | None = None,
+    spokes_dir: Path | None = None,
+    radar_config: str | None = None,
+    seed: int | None = None,
+    start_offset: float = 0.0,
+    duration: float | None = None,
+    fmt: str = "mcap",
+) -> RadarSimulation:
     """The radar on ``scenario``'s ownship from ``start_offset`` seconds after its start for ``duration`` seconds
     (default: to its end), bit-identical per ``seed``."""
     import numpy as np
@@ -46,8 +55,10 @@ def simulate_radar(scenario: str | Path, *, plots_csv: Path | None = None, run_d
     sc = load_scenario(str(scenario))
     if sc.ownship is None:
         raise InputError(scenario, "the scenario has no ownship to carry the radar")
-    settings = validated(SimulationSettings, {"sensors": ("radar",), "radar_config": radar_config, "seed": seed, "fmt": fmt,
-                                              "radar_spokes": spokes_dir is not None})
+    settings = validated(
+        SimulationSettings,
+        {"sensors": ("radar",), "radar_config": radar_config, "seed": seed, "fmt": fmt, "radar_spokes": spokes_dir is not None},
+    )
     counts = {"scans": 0, "plots": 0}
     with contextlib.ExitStack() as stack:
         rows = None
@@ -69,12 +80,22 @@ def simulate_radar(scenario: str | Path, *, plots_csv: Path | None = None, run_d
                 np.savez_compressed(spokes_dir / f"scan_{frame:06d}.npz", **{key: np.asarray(v) for key, v in req.items()})
             if rows is not None:
                 for i in range(len(s)):
-                    rows.writerow([repr(float(t)), f"{s.north[i]:.3f}", f"{s.east[i]:.3f}", f"{s.range_m[i]:.3f}",
-                                   f"{s.azimuth[i]:.6f}", KIND_NAMES[int(s.kind[i])], int(s.object_id[i])])
+                    rows.writerow(
+                        [
+                            repr(float(t)),
+                            f"{s.north[i]:.3f}",
+                            f"{s.east[i]:.3f}",
+                            f"{s.range_m[i]:.3f}",
+                            f"{s.azimuth[i]:.6f}",
+                            KIND_NAMES[int(s.kind[i])],
+                            int(s.object_id[i]),
+                        ]
+                    )
 
         if run_dir is not None:
-            simulate_scenario(sc, run_dir, settings, start=sc.start + start_offset, duration=duration, progress=False,
-                              on_frame=export)
+            simulate_scenario(
+                sc, run_dir, settings, start=sc.start + start_offset, duration=duration, progress=False, on_frame=export
+            )
         else:
             radar = [s for s in scenario_sensors(sc, settings) if isinstance(s, RadarSensor)]
             t0, t1 = time_window(sc.start, sc.end, sc.start + start_offset, duration)

@@ -31,17 +31,24 @@ class TrackOptions(Settings):
     """How a recording is turned into measurements and tracked (defaults: the recording's own hints)."""
 
     sensors: tuple[Literal["lidar", "radar", "camera"], ...] | None = Field(
-        None, description="Sensors to track with (default: the lidar and radar topics the recording has).")
+        None, description="Sensors to track with (default: the lidar and radar topics the recording has)."
+    )
     tuning: str | None = Field(
-        None, description="Tracker tuning: a preset (synthetic, real, joyride, ravnkloa) or a YAML/JSON file "
-                          "(default: the recording's suggestion, else 'real').")
+        None,
+        description="Tracker tuning: a preset (synthetic, real, joyride, ravnkloa) or a YAML/JSON file "
+        "(default: the recording's suggestion, else 'real').",
+    )
     map_spec: str | None = Field(
-        None, description="Water mask for land/quay returns: 'harbour', 'none' or a raster (.yaml/.bin) "
-                          "(default: the recording's suggestion, else none).")
+        None,
+        description="Water mask for land/quay returns: 'harbour', 'none' or a raster (.yaml/.bin) "
+        "(default: the recording's suggestion, else none).",
+    )
     merge_distance: float | None = Field(
-        None, ge=0, description="Merge radar plots closer than this [m] (default: the recording's suggestion, else 0).")
+        None, ge=0, description="Merge radar plots closer than this [m] (default: the recording's suggestion, else 0)."
+    )
     radar_kind: Literal["range_bearing", "cartesian"] = Field(
-        "range_bearing", description="Measurement model of radar plots: range and bearing, or Cartesian north/east.")
+        "range_bearing", description="Measurement model of radar plots: range and bearing, or Cartesian north/east."
+    )
     eps: float = Field(1.5, gt=0, description="Lidar clustering distance [m].")
     min_points: int = Field(3, ge=1, description="Smallest lidar cluster [points].")
     agent: Literal["jipda", "gnn"] = Field("jipda", description="The tracker: JIPDA (thesis ch. 5.1) or GNN.")
@@ -60,8 +67,14 @@ class TrackingResult:
     elapsed_s: float
 
 
-def track_scans(scans: Iterable[Scan], tuning: TrackerConfig | str, *, agent: str = "jipda", source: str = "<scans>",
-                on_scan: Callable[[Scan], None] | None = None) -> Tracks:
+def track_scans(
+    scans: Iterable[Scan],
+    tuning: TrackerConfig | str,
+    *,
+    agent: str = "jipda",
+    source: str = "<scans>",
+    on_scan: Callable[[Scan], None] | None = None,
+) -> Tracks:
     """Run a fresh ``agent`` (``jipda`` or ``gnn``) with ``tuning`` (config, preset name or file) over ``scans``."""
     from seatwin.evaluation import Tracks
     from seatwin.tracking import JIPDATracker, load_tuning, run_tracker
@@ -75,8 +88,16 @@ def track_scans(scans: Iterable[Scan], tuning: TrackerConfig | str, *, agent: st
     tracker = JIPDATracker(cfg) if agent == "jipda" else GNNTracker(cfg)
     run = run_tracker(tracker, scans, on_scan, source)
     tab = run.table
-    return Tracks(tab.time, tab.track_id, tab.existence, tab.x, tab.P, tab.confirmed, scan_times=run.scan_times,
-                  source=f"{source} (tuning {cfg.name}, {agent})")
+    return Tracks(
+        tab.time,
+        tab.track_id,
+        tab.existence,
+        tab.x,
+        tab.P,
+        tab.confirmed,
+        scan_times=run.scan_times,
+        source=f"{source} (tuning {cfg.name}, {agent})",
+    )
 
 
 def _hint_path(value: object, run_dir: Path | None) -> str | None:
@@ -100,8 +121,13 @@ def vessel_truth(rec: Any) -> dict[str, Any] | None:
         return None
 
 
-def track_recording(recording: str | Path, options: TrackOptions | None = None, *,
-                    progress: Callable[[int, int], None] | None = None, **changes: Any) -> TrackingResult:
+def track_recording(
+    recording: str | Path,
+    options: TrackOptions | None = None,
+    *,
+    progress: Callable[[int, int], None] | None = None,
+    **changes: Any,
+) -> TrackingResult:
     """Track ``recording`` (run directory, rosbag2 directory, .mcap/.db3/.bag) with ``options`` (+ field ``changes``).
 
     ``progress(done, total)`` is called after every scan.
@@ -136,8 +162,14 @@ def track_recording(recording: str | Path, options: TrackOptions | None = None, 
         for s in wanted:
             if s != "camera":
                 cfg.sensor(s)  # the tuning must cover every sensor used
-        found = scans_from_recording(rec, wanted, mask=mask, lidar=LidarClustering(eps=options.eps, min_points=options.min_points),
-                                     radar=radar, truth=vessel_truth(rec))
+        found = scans_from_recording(
+            rec,
+            wanted,
+            mask=mask,
+            lidar=LidarClustering(eps=options.eps, min_points=options.min_points),
+            radar=radar,
+            truth=vessel_truth(rec),
+        )
         done = 0
 
         def advance(_scan: Scan) -> None:
@@ -149,5 +181,12 @@ def track_recording(recording: str | Path, options: TrackOptions | None = None, 
         tracks = track_scans(found.scans, cfg, agent=options.agent, source=str(path), on_scan=advance)
     import numpy as np
 
-    return TrackingResult(tracks, tuple(wanted), cfg.name, len(tracks.scan_times), len(np.unique(tracks.track_id)),
-                          len(np.unique(tracks.track_id[tracks.confirmed])), _time.perf_counter() - t_start)
+    return TrackingResult(
+        tracks,
+        tuple(wanted),
+        cfg.name,
+        len(tracks.scan_times),
+        len(np.unique(tracks.track_id)),
+        len(np.unique(tracks.track_id[tracks.confirmed])),
+        _time.perf_counter() - t_start,
+    )

@@ -25,11 +25,10 @@ class CloudSnapshot:
 
 def cloud_at(path: str | os.PathLike[str], t: float, sensor: str = "lidar") -> CloudSnapshot:
     """The ``sensor`` (lidar or radar) point cloud of a recording whose stamp is nearest ``t``, in world NED."""
+    from seatwin.evaluation.truth import recording_truth
     from seatwin.perception.frames import Mount, sensor_pose
     from seatwin.perception.from_recording import OwnshipTrajectory
     from seatwin.recording import open_bag
-
-    from seatwin.evaluation.truth import recording_truth
 
     with open_bag(path) as rec:
         truth = recording_truth(rec)
@@ -57,6 +56,9 @@ def cloud_at(path: str | os.PathLike[str], t: float, sensor: str = "lidar") -> C
             if best.frame_id not in mounts:
                 raise InputError(path, f"no /tf_static mount for sensor frame {best.frame_id!r}; mounts: {sorted(mounts)}")
             world = sensor_pose(n, e, h, mounts[best.frame_id], d).to_world(xyz)[:, :2]
-        targets = [(v.name, float(np.interp(best.stamp, v.time, v.north)), float(np.interp(best.stamp, v.time, v.east)))
-                   for v in truth.values() if not v.ownship and v.time[0] <= best.stamp <= v.time[-1]]
+        targets = [
+            (v.name, float(np.interp(best.stamp, v.time, v.north)), float(np.interp(best.stamp, v.time, v.east)))
+            for v in truth.values()
+            if not v.ownship and v.time[0] <= best.stamp <= v.time[-1]
+        ]
     return CloudSnapshot(float(best.stamp), np.asarray(world, float), (n, e), targets)

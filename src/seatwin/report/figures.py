@@ -37,7 +37,7 @@ def _clock(t: NDArray[np.float64]) -> NDArray[np.float64]:
 def _start(t: NDArray[np.float64]) -> str:
     if not len(t):
         return ""
-    return dt.datetime.fromtimestamp(float(t[0]), dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC")
+    return dt.datetime.fromtimestamp(float(t[0]), dt.UTC).strftime("%Y-%m-%d %H:%M:%S UTC")
 
 
 def hellinger_figure(series: ComparisonSeries, title: str) -> bytes:
@@ -59,8 +59,17 @@ def hellinger_figure(series: ComparisonSeries, title: str) -> bytes:
     for a in ax:
         a.grid(alpha=0.3)
         if only.any():
-            a.fill_between(t, 0, 1, where=only, transform=a.get_xaxis_transform(), color="orange", alpha=0.15,
-                           step="mid", label="only one dataset")
+            a.fill_between(
+                t,
+                0,
+                1,
+                where=only,
+                transform=a.get_xaxis_transform(),
+                color="orange",
+                alpha=0.15,
+                step="mid",
+                label="only one dataset",
+            )
     fig.suptitle(title)
     return to_png(fig)
 
@@ -99,8 +108,16 @@ def _land(ax, mask, extent: tuple[float, float, float, float]) -> None:  # noqa:
     res = max((e1 - e0), (n1 - n0)) / 400.0
     ee, nn = np.meshgrid(np.arange(e0, e1, res), np.arange(n0, n1, res))
     water = np.asarray(mask.is_water(nn, ee), dtype=bool)
-    ax.imshow(np.where(water, np.nan, 1.0), origin="lower", extent=(e0, e1, n0, n1), cmap="Greys", vmin=0, vmax=2.5,
-              interpolation="nearest", zorder=0)
+    ax.imshow(
+        np.where(water, np.nan, 1.0),
+        origin="lower",
+        extent=(e0, e1, n0, n1),
+        cmap="Greys",
+        vmin=0,
+        vmax=2.5,
+        interpolation="nearest",
+        zorder=0,
+    )
 
 
 def tracks_figure(comp: Comparison, truth, target: str, title: str, mask=None, ellipse_every: int = 5) -> bytes:  # noqa: ANN001
@@ -116,7 +133,7 @@ def tracks_figure(comp: Comparison, truth, target: str, title: str, mask=None, e
         if ok.any():
             ax.plot(s.state[ok, 2], s.state[ok, 0], ".", ms=3, color=COLORS[name], label=f"{name} estimate", zorder=4)
             pts.append(np.column_stack([s.state[ok, 2], s.state[ok, 0]]))
-            for i in np.flatnonzero(ok)[::max(ellipse_every, 1)]:
+            for i in np.flatnonzero(ok)[:: max(ellipse_every, 1)]:
                 c = s.covariance[i][np.ix_([2, 0], [2, 0])]
                 e = _ellipse(np.array([s.state[i, 2], s.state[i, 0]]), c)
                 ax.plot(e[:, 0], e[:, 1], "-", color="#17becf", lw=0.7, zorder=2)
@@ -139,9 +156,14 @@ def tracks_figure(comp: Comparison, truth, target: str, title: str, mask=None, e
     return to_png(fig)
 
 
-def clouds_figure(real_xy: NDArray[np.float64], synthetic_xy: NDArray[np.float64], title: str,
-                  ownship: tuple[float, float] | None = None,
-                  targets: list[tuple[str, float, float]] | None = None, radius: float = 10.0) -> bytes:
+def clouds_figure(
+    real_xy: NDArray[np.float64],
+    synthetic_xy: NDArray[np.float64],
+    title: str,
+    ownship: tuple[float, float] | None = None,
+    targets: list[tuple[str, float, float]] | None = None,
+    radius: float = 10.0,
+) -> bytes:
     """Fig. 5.10: both datasets' point clouds (north, east) at one time; ownship and targets circled.
 
     The view spans the ownship and the targets with a margin (all points if neither is given).

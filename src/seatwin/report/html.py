@@ -86,43 +86,81 @@ def _ahed_section(results: list[ScenarioResult]) -> str:
         return "<p>No comparison.</p>"
     form = rows[0]["hellinger_form"]
     other = "printed" if form == "standard" else "standard"
-    table = [[_f(r["scenario"]), _f(r["target"]), _f(r["tuning"] or "–"), _f(r["ahed"]), _f(r[f"ahed_{other}"]),
-              _f(r["n_common"]), _f(r["n_only_real"]), _f(r["n_only_synthetic"]), _f(r["n_both_missing"]),
-              _f(r["fraction_only_one"], ".1%"), _f(r["mean_covdiff"])] for r in rows]
+    table = [
+        [
+            _f(r["scenario"]),
+            _f(r["target"]),
+            _f(r["tuning"] or "–"),
+            _f(r["ahed"]),
+            _f(r[f"ahed_{other}"]),
+            _f(r["n_common"]),
+            _f(r["n_only_real"]),
+            _f(r["n_only_synthetic"]),
+            _f(r["n_both_missing"]),
+            _f(r["fraction_only_one"], ".1%"),
+            _f(r["mean_covdiff"]),
+        ]
+        for r in rows
+    ]
     tunings = sorted({r["tuning"] for r in rows})
     for tun in tunings + [None]:
         vals = [r["ahed"] for r in rows if (tun is None or r["tuning"] == tun) and r["ahed"] is not None]
         label = "Average, all tunings" if tun is None else f"Average, tuning {tun or '–'}"
         table.append([label, "", "", _f(float(np.mean(vals)) if vals else None)] + [""] * 7)
-    header = ["scenario", "target", "tuning", f"AHED ({form})", f"AHED ({other})", "common", "only real",
-              "only synthetic", "both missing", "only one", "mean COVDIFF"]
+    header = [
+        "scenario",
+        "target",
+        "tuning",
+        f"AHED ({form})",
+        f"AHED ({other})",
+        "common",
+        "only real",
+        "only synthetic",
+        "both missing",
+        "only one",
+        "mean COVDIFF",
+    ]
     fig = figures.ahed_figure(rows, "AHED per scenario and target (cf. thesis Fig. 5.3)")
-    return (_table(header, table, left=3, avg_rows=len(tunings) + 1) + _img(fig, "AHED bar chart")
-            + '<p class="note">AHED averages HED over the instants where both datasets have the target; it cannot see '
-              'track loss, so the instants where only one dataset has it are counted beside it ("only one": their '
-              "share of the instants where either has it). “–”: undefined (no common instant).</p>")
+    return (
+        _table(header, table, left=3, avg_rows=len(tunings) + 1)
+        + _img(fig, "AHED bar chart")
+        + '<p class="note">AHED averages HED over the instants where both datasets have the target; it cannot see '
+        'track loss, so the instants where only one dataset has it are counted beside it ("only one": their '
+        "share of the instants where either has it). “–”: undefined (no common instant).</p>"
+    )
 
 
 def _anees_table(comp: Comparison, target: str) -> str:
     rows = []
     for name, ev in (("Synthetic dataset", comp.synthetic), ("Real dataset", comp.real)):
         s = next(x for x in ev.summaries if x.target == target)
-        rows.append([name, _f(s.anees), _f(s.anees_upper), _f(s.anees_lower), _f(s.n_valid), _f(s.anees_verdict),
-                     _f(s.coverage, ".1%"), _f(s.track_switches), _f(s.rmse_position, ".2f")])
-    return _table(["", "ANEES", "upper bound", "lower bound", "N_k", "verdict", "coverage", "switches",
-                   "RMSE pos [m]"], rows)
+        rows.append(
+            [
+                name,
+                _f(s.anees),
+                _f(s.anees_upper),
+                _f(s.anees_lower),
+                _f(s.n_valid),
+                _f(s.anees_verdict),
+                _f(s.coverage, ".1%"),
+                _f(s.track_switches),
+                _f(s.rmse_position, ".2f"),
+            ]
+        )
+    return _table(["", "ANEES", "upper bound", "lower bound", "N_k", "verdict", "coverage", "switches", "RMSE pos [m]"], rows)
 
 
 def _target_section(result: ScenarioResult, comp: Comparison, target: str, mask) -> str:  # noqa: ANN001
     label = f"{result.name} — {target}" + (f" — tuning {comp.tuning}" if comp.tuning else "")
     line = next(t for t in comp.targets if t.target == target)
-    parts = [f"<h3>{html.escape(label)}</h3>",
-             f"<p>AHED {_f(line.ahed)} over {line.n_common} common instants; only real {line.n_only_real}, "
-             f"only synthetic {line.n_only_synthetic}, both missing {line.n_both_missing}.</p>"]
+    parts = [
+        f"<h3>{html.escape(label)}</h3>",
+        f"<p>AHED {_f(line.ahed)} over {line.n_common} common instants; only real {line.n_only_real}, "
+        f"only synthetic {line.n_only_synthetic}, both missing {line.n_both_missing}.</p>",
+    ]
     series = comp.series[target]
     if series.common.any():
-        parts.append(_img(figures.hellinger_figure(series, f"{label}: HED, COVDIFF, NEES and RMSE differences"),
-                          f"HED {label}"))
+        parts.append(_img(figures.hellinger_figure(series, f"{label}: HED, COVDIFF, NEES and RMSE differences"), f"HED {label}"))
     parts.append(_anees_table(comp, target))
     ev_valid = comp.real.series[target].valid.any() or comp.synthetic.series[target].valid.any()
     if ev_valid:
@@ -138,30 +176,47 @@ def render_report(results: list[ScenarioResult], title: str = "seatwin compariso
     opts = results[0].comparisons[0].options if results and results[0].comparisons else None
     conv = ""
     if opts is not None:
-        conv = (f"<p class=\"note\">Conventions: HED form <code>{opts.form}</code> (standard: mean term exp(−NEES/8); "
-                f"printed (5.30): exp(−NEES/16)); both datasets without a track: <code>{opts.both_missing}</code>; "
-                f"instants matched within {opts.time_tolerance:g} s; track-to-truth gate {opts.gate:g} m; "
-                f"{'confirmed tracks only' if opts.confirmed_only else 'all tracks'}.</p>")
-    body = [f"<h1>{html.escape(title)}</h1>",
-            f'<p class="note">Generated {dt.datetime.now(dt.timezone.utc):%Y-%m-%d %H:%M UTC} by seatwin.</p>', conv,
-            "<h2>Averaged Hellinger distances</h2>", _ahed_section(results)]
+        conv = (
+            f'<p class="note">Conventions: HED form <code>{opts.form}</code> (standard: mean term exp(−NEES/8); '
+            f"printed (5.30): exp(−NEES/16)); both datasets without a track: <code>{opts.both_missing}</code>; "
+            f"instants matched within {opts.time_tolerance:g} s; track-to-truth gate {opts.gate:g} m; "
+            f"{'confirmed tracks only' if opts.confirmed_only else 'all tracks'}.</p>"
+        )
+    body = [
+        f"<h1>{html.escape(title)}</h1>",
+        f'<p class="note">Generated {dt.datetime.now(dt.UTC):%Y-%m-%d %H:%M UTC} by seatwin.</p>',
+        conv,
+        "<h2>Averaged Hellinger distances</h2>",
+        _ahed_section(results),
+    ]
     for res in results:
         body.append(f"<h2>Scenario {html.escape(res.name)}</h2>")
         for comp in res.comparisons:
             for target in res.truth.names:
                 body.append(_target_section(res, comp, target, mask))
         for cl in res.clouds:
-            stamp = dt.datetime.fromtimestamp(cl.time, dt.timezone.utc).strftime("%H:%M:%S")
+            stamp = dt.datetime.fromtimestamp(cl.time, dt.UTC).strftime("%H:%M:%S")
             body.append(f"<h3>Point clouds at {stamp}</h3>")
-            body.append(_img(figures.clouds_figure(cl.real, cl.synthetic, f"{res.name}: point clouds at {stamp} UTC",
-                                                   cl.ownship, cl.targets), f"clouds {stamp}"))
-    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-            f"<title>{html.escape(title)}</title><style>{_CSS}</style></head>\n<body>\n"
-            + "\n".join(body) + _CHECK + "\n</body></html>\n")
+            body.append(
+                _img(
+                    figures.clouds_figure(
+                        cl.real, cl.synthetic, f"{res.name}: point clouds at {stamp} UTC", cl.ownship, cl.targets
+                    ),
+                    f"clouds {stamp}",
+                )
+            )
+    return (
+        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
+        f"<title>{html.escape(title)}</title><style>{_CSS}</style></head>\n<body>\n"
+        + "\n".join(body)
+        + _CHECK
+        + "\n</body></html>\n"
+    )
 
 
-def write_report(out_dir: str | os.PathLike[str], results: list[ScenarioResult], title: str = "seatwin comparison report",
-                 mask=None) -> Path:  # noqa: ANN001
+def write_report(
+    out_dir: str | os.PathLike[str], results: list[ScenarioResult], title: str = "seatwin comparison report", mask=None
+) -> Path:  # noqa: ANN001
     """Write ``index.html`` (self-contained, works offline) into ``out_dir``; return its path.
 
     ``mask`` is a water mask (``is_water(north, east)``, e.g. :func:`seatwin.perception.map_mask.load_mask`)
@@ -174,8 +229,14 @@ def write_report(out_dir: str | os.PathLike[str], results: list[ScenarioResult],
     return page
 
 
-def write_comparison_report(out_dir: str | os.PathLike[str], comparisons: list[Comparison], truth: TruthSet,
-                            title: str = "seatwin comparison report", scenario: str = "scenario", mask=None,  # noqa: ANN001
-                            clouds: list[Clouds] | None = None) -> Path:
+def write_comparison_report(
+    out_dir: str | os.PathLike[str],
+    comparisons: list[Comparison],
+    truth: TruthSet,
+    title: str = "seatwin comparison report",
+    scenario: str = "scenario",
+    mask=None,  # noqa: ANN001
+    clouds: list[Clouds] | None = None,
+) -> Path:
     """The report of one scenario compared under one or more tunings."""
     return write_report(out_dir, [ScenarioResult(scenario, comparisons, truth, clouds or [])], title, mask)

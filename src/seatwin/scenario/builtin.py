@@ -77,9 +77,7 @@ def _evasive_halted_ferry(name: str) -> Scenario:
     own_profile = SpeedProfile(((0.0, 1.2), (23.2, 1.2), (35.2, 0.0)))
     own = follow(own_path, own_profile, start, duration, source=f"{name}: milliAmpere")
     # Havfruen heads straight for the ferry, jogs 24 m to starboard (east), passes, jogs back.
-    havfruen_path = (
-        Path(-235.0, -8.0, 0.0).line(85.0).jog(24.0, 25.0, 35.0).line(70.0).jog(-24.0, 25.0, 35.0).line(200.0)
-    )
+    havfruen_path = Path(-235.0, -8.0, 0.0).line(85.0).jog(24.0, 25.0, 35.0).line(70.0).jog(-24.0, 25.0, 35.0).line(200.0)
     havfruen = follow(havfruen_path, SpeedProfile.constant(3.2), start, duration, source=f"{name}: Havfruen")
     # Finn follows and passes the ferry on its west side.
     finn_path = Path(-262.0, -12.0, 0.0).line(100.0).jog(-20.0, 20.0, 35.0).line(65.0).jog(20.0, 20.0, 35.0).line(200.0)
@@ -98,12 +96,7 @@ def _stop_and_evade(name: str) -> Scenario:
     # Havfruen, southbound on the west side, jogs 25 m to starboard (west) to pass astern of the
     # ferry, past the west pier's tip first, then jogs back.
     havfruen_path = (
-        Path(140.0, -10.0, np.radians(180))
-        .line(105.0)
-        .jog(25.0, 20.0, 35.0)
-        .line(20.0)
-        .jog(-25.0, 20.0, 35.0)
-        .line(100.0)
+        Path(140.0, -10.0, np.radians(180)).line(105.0).jog(25.0, 20.0, 35.0).line(20.0).jog(-25.0, 20.0, 35.0).line(100.0)
     )
     havfruen = follow(havfruen_path, SpeedProfile.constant(3.2), start, duration, source=f"{name}: Havfruen")
     return _scenario(name, _vessels(own, havfruen, finn))
@@ -148,12 +141,7 @@ def _surprise_separation(name: str) -> Scenario:
     finn_path = Path(n0, e0, heading).line(back + 10.0).turn_to(180.0, 30.0).line(200.0)
     finn = follow(finn_path, speed, start, duration, source=f"{name}: Finn")
     havfruen_path = (
-        Path(n0, e0, heading)
-        .line(spacing + leader_range - 55.0)
-        .turn_to(255.0, 18.0)
-        .line(45.0)
-        .turn_to(185.0, 20.0)
-        .line(200.0)
+        Path(n0, e0, heading).line(spacing + leader_range - 55.0).turn_to(255.0, 18.0).line(45.0).turn_to(185.0, 20.0).line(200.0)
     )
     havfruen = follow(havfruen_path, speed, start, duration, offset=spacing, source=f"{name}: Havfruen")
     return _scenario(name, _vessels(own, havfruen, finn))
@@ -175,9 +163,7 @@ def _constant_bearing(name: str) -> Scenario:
     targets = []
     for label, r0 in (("Havfruen", 110.0), ("Finn", 128.0)):
         n0, e0 = np.array([0.0, -55.0]) + r0 * u
-        path = (
-            Path(n0, e0, heading).line(speed * hold).turn_to(235.0, 20.0).line(15.0).turn_to(185.0, 25.0).line(200.0)
-        )
+        path = Path(n0, e0, heading).line(speed * hold).turn_to(235.0, 20.0).line(15.0).turn_to(185.0, 25.0).line(200.0)
         targets.append(follow(path, SpeedProfile.constant(speed), start, duration, source=f"{name}: {label}"))
     return _scenario(name, _vessels(own, *targets))
 

@@ -29,7 +29,7 @@ def _parse_time_of_day(text: str, date: dt.date, path: Path, line: int) -> float
         t = dt.time.fromisoformat(text.strip())
     except ValueError:
         raise InputError(path, f"expected HH:MM:SS[.fff] in {TIME_OF_DAY}, got {text!r}", where=f"line {line}") from None
-    return dt.datetime.combine(date, t, tzinfo=dt.timezone.utc).timestamp()
+    return dt.datetime.combine(date, t, tzinfo=dt.UTC).timestamp()
 
 
 def read_gemini_csv(path: str | os.PathLike[str], date: dt.date | None = None) -> dict[int, Trajectory]:
@@ -84,7 +84,9 @@ def read_gemini_csv(path: str | os.PathLike[str], date: dt.date | None = None) -
                 try:
                     v = float(cell)
                 except ValueError:
-                    raise InputError(path, f"expected a number, got {cell!r}", where=f"line {line_no}, column {header[i]}") from None
+                    raise InputError(
+                        path, f"expected a number, got {cell!r}", where=f"line {line_no}, column {header[i]}"
+                    ) from None
                 if not np.isfinite(v):
                     raise InputError(path, f"expected a finite number, got {cell!r}", where=f"line {line_no}, column {header[i]}")
                 values.append(v)
@@ -118,7 +120,7 @@ def read_gemini_csv(path: str | os.PathLike[str], date: dt.date | None = None) -
 
 def _times_of_day(time: NDArray[np.float64], path: Path) -> tuple[list[str], dt.date]:
     """POSIX seconds → ``HH:MM:SS.fff`` (µs when needed) and their UTC date; one day only."""
-    stamps = [dt.datetime.fromtimestamp(float(t), tz=dt.timezone.utc) for t in time]
+    stamps = [dt.datetime.fromtimestamp(float(t), tz=dt.UTC) for t in time]
     if stamps[0].date() != stamps[-1].date():
         raise InputError(path, f"{TIME_OF_DAY} cannot span midnight UTC ({stamps[0]} to {stamps[-1]}); write {TIME_POSIX}")
     spec = "milliseconds" if all(s.microsecond % 1000 == 0 for s in stamps) else "microseconds"

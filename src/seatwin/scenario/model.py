@@ -71,8 +71,7 @@ class Trajectory:
             i = int(np.flatnonzero(steps <= 0)[0]) + 1
             raise InputError(
                 self.source,
-                f"times must increase strictly; sample {i} ({self.time[i]!r}) "
-                f"follows {self.time[i - 1]!r}",
+                f"times must increase strictly; sample {i} ({self.time[i]!r}) follows {self.time[i - 1]!r}",
                 where="time",
             )
         self._heading_unwrapped = unwrap(self.heading)

@@ -82,11 +82,7 @@ class Path:
         if abs(offset) < bends:
             raise ValueError(f"offset {offset} m is smaller than the two bends alone ({bends:.1f} m)")
         sign = np.sign(offset)
-        return (
-            self.arc(radius, sign * angle_deg)
-            .line((abs(offset) - bends) / np.sin(theta))
-            .arc(radius, -sign * angle_deg)
-        )
+        return self.arc(radius, sign * angle_deg).line((abs(offset) - bends) / np.sin(theta)).arc(radius, -sign * angle_deg)
 
     def end_pose(self) -> tuple[float, float, float]:
         """(north, east, heading in [−π, π)) at the end of the path."""

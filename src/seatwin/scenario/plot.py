@@ -29,8 +29,17 @@ def _draw_harbour(ax, layout: HarbourLayout) -> None:  # type: ignore[no-untyped
     for e0 in (-w - depth, w):
         ax.add_patch(Rectangle((e0, n0), depth, n1 - n0, facecolor=LAND, edgecolor="none", zorder=0))
     for box in layout.piers:
-        ax.add_patch(Rectangle((box.east_min, box.north_min), box.east_max - box.east_min, box.north_max - box.north_min,
-                               facecolor="#a89f8c", edgecolor="#6f6757", lw=0.6, zorder=1))
+        ax.add_patch(
+            Rectangle(
+                (box.east_min, box.north_min),
+                box.east_max - box.east_min,
+                box.north_max - box.north_min,
+                facecolor="#a89f8c",
+                edgecolor="#6f6757",
+                lw=0.6,
+                zorder=1,
+            )
+        )
     for boat in layout.moored_boats:
         rot = yaw_matrix(np.radians(boat.heading_deg))[:2, :2]  # body (forward, starboard) → (north, east)
         corners = [rot @ (a * boat.length / 2, b * boat.beam / 2) for a, b in ((1, 1), (1, -1), (-1, -1), (-1, 1))]
@@ -82,7 +91,9 @@ def plot_scenario(scenario: Scenario, out: str | os.PathLike[str], tick_s: float
         ax.set_aspect("equal")
         ax.set_xlabel("east [m]")
         ax.set_ylabel("north [m]")
-        ax.set_title(f"{scenario.name}  ({end - start:.0f} s; circle: start, star: end, dots every {tick_s:g} s){note}", fontsize=10)
+        ax.set_title(
+            f"{scenario.name}  ({end - start:.0f} s; circle: start, star: end, dots every {tick_s:g} s){note}", fontsize=10
+        )
         ax.grid(True, lw=0.3, alpha=0.6)
         ax.legend(loc="best", fontsize=8)
         fig.tight_layout()

@@ -44,7 +44,7 @@ def closest_approach(a: Trajectory, b: Trajectory, start: float | None = None, e
 
 
 def _iso(t: float) -> str:
-    return dt.datetime.fromtimestamp(t, tz=dt.timezone.utc).isoformat(timespec="milliseconds")
+    return dt.datetime.fromtimestamp(t, tz=dt.UTC).isoformat(timespec="milliseconds")
 
 
 def scenario_summary(scenario: Scenario) -> dict[str, Any]:

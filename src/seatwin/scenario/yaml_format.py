@@ -136,7 +136,9 @@ def read_scenario_yaml(path: str | os.PathLike[str], date: dt.date | None = None
     if harbour != "default":
         raster = (path.parent / harbour).resolve()
         if not raster.exists():
-            raise InputError(path, f"harbour raster {str(raster)!r} does not exist (or use 'default')", where="field environment.harbour")
+            raise InputError(
+                path, f"harbour raster {str(raster)!r} does not exist (or use 'default')", where="field environment.harbour"
+            )
         harbour = str(raster)
     use_date = date or spec.date
     try:
@@ -148,8 +150,11 @@ def read_scenario_yaml(path: str | os.PathLike[str], date: dt.date | None = None
     listed = {v.column for v in spec.vessels}
     for i, v in enumerate(spec.vessels):
         if v.column not in trajectories:
-            raise InputError(path, f"column {v.column} is not in {csv_path.name} (it has vessels {sorted(trajectories)})",
-                             where=f"field vessels[{i}].column")
+            raise InputError(
+                path,
+                f"column {v.column} is not in {csv_path.name} (it has vessels {sorted(trajectories)})",
+                where=f"field vessels[{i}].column",
+            )
     unlisted = sorted(set(trajectories) - listed)
     if unlisted:
         raise InputError(path, f"{csv_path.name} has vessel(s) {unlisted} not listed under vessels", where="field vessels")

@@ -97,7 +97,9 @@ class Lidar:
         self.range_model_name = range_model
         self._model = get_range_model(range_model)
         if platform is not None and platform not in scene.vessel_models:
-            raise InputError(None, f"lidar carrier {platform!r} is not a vessel of the scene {scene.vessel_names}", where="platform")
+            raise InputError(
+                None, f"lidar carrier {platform!r} is not a vessel of the scene {scene.vessel_names}", where="platform"
+            )
         if mount.z >= 0:
             raise InputError(None, f"the lidar must be above the water (mount z < 0 in NED), got z = {mount.z}", where="mount.z")
         cfg = config
@@ -137,7 +139,9 @@ class Lidar:
         """POSIX firing time of every column of the sweep starting at ``start``."""
         return float(start) + self.column_offsets
 
-    def _column_frames(self, times: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.complex128]]:
+    def _column_frames(
+        self, times: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.complex128]]:
         """Sensor origin (C, 3), carrier heading (C,) and exp(i·heading) at the column times."""
         m = self.mount
         if self.platform is None:
@@ -189,7 +193,9 @@ class Lidar:
             col = np.repeat(np.arange(k * c), rings) if k > 1 else self.beam_column
             d = np.empty((k * n, 3), np.float32)
             d[:, 2].reshape(k, n)[:] = self._bz
-            np.multiply(self._bxy.reshape(1, c, rings), turn.reshape(k, c, 1), out=d[:, :2].view(np.complex64).reshape(k, c, rings))
+            np.multiply(
+                self._bxy.reshape(1, c, rings), turn.reshape(k, c, 1), out=d[:, :2].view(np.complex64).reshape(k, c, rings)
+            )
             o = np.repeat(o32, rings, axis=0)
             limit = np.tile(self._water, k) if k > 1 else self._water
         else:
@@ -262,8 +268,14 @@ class Lidar:
         return dirs
 
     def _pack(
-        self, start: float, frame: int, keep: NDArray[np.intp], batch: BeamBatch,
-        rng: NDArray[np.float32], oid: NDArray[np.int32], nrm: NDArray[np.float32],
+        self,
+        start: float,
+        frame: int,
+        keep: NDArray[np.intp],
+        batch: BeamBatch,
+        rng: NDArray[np.float32],
+        oid: NDArray[np.int32],
+        nrm: NDArray[np.float32],
         dirs: NDArray[np.float32] | None = None,
     ) -> LidarSweep:
         """Dissipation, noise, intensity and the points of one sweep (``keep``: its valid returns)."""
@@ -274,7 +286,9 @@ class Lidar:
         sel = batch.beam[keep]
         r = rng[keep]
         if self._noise_std > 0:
-            r = r + self._noise_std * frame_rng(self.seed, f"{self.stream}/noise", frame).standard_normal(r.size, dtype=np.float32)
+            r = r + self._noise_std * frame_rng(self.seed, f"{self.stream}/noise", frame).standard_normal(
+                r.size, dtype=np.float32
+            )
         ids = oid[keep]
         cos = cos_incidence(nrm[keep], batch.directions[keep])
         inten = intensity(self.scene.reflectivity[ids], cos, r, cfg.intensity)

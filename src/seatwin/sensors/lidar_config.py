@@ -29,10 +29,12 @@ class IntensityModel(Settings):
     """
 
     scale: float = Field(
-        255.0, ge=0, description="Intensity of a perpendicular return from reflectivity 1 inside the reference range.")
+        255.0, ge=0, description="Intensity of a perpendicular return from reflectivity 1 inside the reference range."
+    )
     reference_range: float = Field(40.0, gt=0, description="Range inside which the intensity does not fall off [m].")
     exponent: float = Field(
-        2.0, ge=0, description="Exponent of the fall-off with range beyond the reference range (2: the lidar equation).")
+        2.0, ge=0, description="Exponent of the fall-off with range beyond the reference range (2: the lidar equation)."
+    )
 
 
 class RangeDissipation(Settings):
@@ -51,17 +53,22 @@ class LidarConfig(Settings):
 
     name: str = Field("vlp16", description="Name of the sensor model.")
     elevations_deg: tuple[float, ...] = Field(
-        tuple(float(e) for e in range(-15, 16, 2)), min_length=1,
-        description="Laser elevations, ascending (ring r = index into this tuple) [deg].")
+        tuple(float(e) for e in range(-15, 16, 2)),
+        min_length=1,
+        description="Laser elevations, ascending (ring r = index into this tuple) [deg].",
+    )
     columns: int = Field(1800, ge=1, description="Firings per revolution (azimuth resolution 360°/columns).")
     rate_hz: float = Field(10.0, gt=0, description="Revolutions per second; a sweep lasts 1/rate_hz [Hz].")
     max_range: float = Field(100.0, gt=0, description="Farthest return [m].")
     min_range: float = Field(
-        0.05, ge=0, description="Returns nearer than this are discarded (thesis 4.2.3: near plane 5 cm) [m].")
+        0.05, ge=0, description="Returns nearer than this are discarded (thesis 4.2.3: near plane 5 cm) [m]."
+    )
     range_accuracy: float = Field(
-        0.03, ge=0, description="± range accuracy of the data sheet, taken as 2σ of Gaussian noise [m].")
+        0.03, ge=0, description="± range accuracy of the data sheet, taken as 2σ of Gaussian noise [m]."
+    )
     drop_probability: float = Field(
-        0.8, ge=0, le=1, description="Probability that a beam returns nothing (thesis 4.2.2 used 80 %).")
+        0.8, ge=0, le=1, description="Probability that a beam returns nothing (thesis 4.2.2 used 80 %)."
+    )
     dissipation: RangeDissipation | None = Field(None, description="Range-dependent return probability (default: none).")
     intensity: IntensityModel = Field(default_factory=IntensityModel, description="Return intensity model.")
 
@@ -105,8 +112,11 @@ class LidarConfig(Settings):
         phi = -2.0 * np.pi * np.arange(self.columns) / self.columns
         om = np.radians(np.asarray(self.elevations_deg))
         d = np.stack(
-            [np.cos(om)[None, :] * np.cos(phi)[:, None], np.cos(om)[None, :] * np.sin(phi)[:, None],
-             np.broadcast_to(np.sin(om), (self.columns, len(om)))],
+            [
+                np.cos(om)[None, :] * np.cos(phi)[:, None],
+                np.cos(om)[None, :] * np.sin(phi)[:, None],
+                np.broadcast_to(np.sin(om), (self.columns, len(om))),
+            ],
             axis=-1,
         )
         return d.reshape(-1, 3).astype(np.float32)

@@ -50,8 +50,16 @@ def plot_sweep_top_view(
             ring = _footprint(np.asarray(obj.mesh.vertices))
             if ring is not None:
                 ax.fill(ring[:, 1], ring[:, 0], color="0.88", zorder=0)
-    sc = ax.scatter(world_points[:, 1], world_points[:, 0], c=sweep.intensity, s=3, cmap="viridis", vmin=0,
-                    vmax=max(1.0, float(sweep.intensity.max()) if len(sweep) else 1.0), zorder=2)
+    sc = ax.scatter(
+        world_points[:, 1],
+        world_points[:, 0],
+        c=sweep.intensity,
+        s=3,
+        cmap="viridis",
+        vmin=0,
+        vmax=max(1.0, float(sweep.intensity.max()) if len(sweep) else 1.0),
+        zorder=2,
+    )
     for name, model in scene.vessel_models.items():
         p = scene.pose(name, t_mid)
         ring = model.outline()

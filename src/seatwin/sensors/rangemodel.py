@@ -87,8 +87,10 @@ class BeamRanges:
 RangeModel = Callable[[Scene, BeamBatch], BeamRanges]
 
 _MODELS: dict[str, RangeModel] = {}
-_LAZY = {"depthbuffer": ("seatwin.sensors.depthbuffer", "range_model"),
-         "depthbuffer-legacy": ("seatwin.sensors.depthbuffer", "legacy_range_model")}
+_LAZY = {
+    "depthbuffer": ("seatwin.sensors.depthbuffer", "range_model"),
+    "depthbuffer-legacy": ("seatwin.sensors.depthbuffer", "legacy_range_model"),
+}
 
 
 def register_range_model(name: str, model: RangeModel) -> None:

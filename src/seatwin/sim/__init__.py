@@ -5,5 +5,14 @@ from seatwin.sim.run import scenario_sensors, simulate_scenario
 from seatwin.sim.sensors import GroundTruthSensor, LidarSensor, SimSensor
 from seatwin.sim.settings import SimulationSettings
 
-__all__ = ["GroundTruthSensor", "LidarSensor", "SimSensor", "SimulationResult", "SimulationSettings", "frames",
-           "scenario_sensors", "simulate", "simulate_scenario"]
+__all__ = [
+    "GroundTruthSensor",
+    "LidarSensor",
+    "SimSensor",
+    "SimulationResult",
+    "SimulationSettings",
+    "frames",
+    "scenario_sensors",
+    "simulate",
+    "simulate_scenario",
+]

@@ -20,6 +20,7 @@ from typing import Any
 from seatwin.sim.sensors import SimSensor
 from seatwin.sim.timing import periodic_times, time_window  # noqa: F401 - re-exported
 
+
 @dataclass
 class SimulationResult:
     run_dir: Path

@@ -23,8 +23,9 @@ from seatwin.sim.timing import TIME_EPS_S, periodic_times
 
 def radar_mount(config: RadarConfig, ownship: str, sensor: str, topics: TopicConfig) -> StaticTransform:
     """The /tf_static mount of the radar frame on the ownship's body (FRD) frame."""
-    return StaticTransform(topics.body(ownship), sensor, (config.mount_x_m, config.mount_y_m, -config.antenna_height_m),
-                           mount_rotation("flu"))
+    return StaticTransform(
+        topics.body(ownship), sensor, (config.mount_x_m, config.mount_y_m, -config.antenna_height_m), mount_rotation("flu")
+    )
 
 
 def write_scan(writer: RecordingWriter, scan: RadarScan, config: RadarConfig, sensor: str = "radar") -> None:
@@ -32,8 +33,15 @@ def write_scan(writer: RecordingWriter, scan: RadarScan, config: RadarConfig, se
     x = scan.range_m * np.cos(scan.azimuth)
     y = -scan.range_m * np.sin(scan.azimuth)
     writer.write_radar(
-        writer.topics.topic("radar", sensor=sensor), sensor, scan.time, x, y, np.zeros_like(x),
-        intensity=scan.intensity, range=scan.range_m, bearing=scan.azimuth,
+        writer.topics.topic("radar", sensor=sensor),
+        sensor,
+        scan.time,
+        x,
+        y,
+        np.zeros_like(x),
+        intensity=scan.intensity,
+        range=scan.range_m,
+        bearing=scan.azimuth,
         time=scan.azimuth / (2 * np.pi) * config.rotation_period_s,
     )
 
@@ -48,14 +56,24 @@ class RadarSensor:
     captured :class:`RadarScan`.
     """
 
-    def __init__(self, model: RadarModel, scene: Any, ownship: str, *, times: Sequence[float] | None = None,
-                 frame_ids: Sequence[int] | None = None, phase_s: float = 0.0, with_spokes: bool | None = None,
-                 name: str = "radar"):
+    def __init__(
+        self,
+        model: RadarModel,
+        scene: Any,
+        ownship: str,
+        *,
+        times: Sequence[float] | None = None,
+        frame_ids: Sequence[int] | None = None,
+        phase_s: float = 0.0,
+        with_spokes: bool | None = None,
+        name: str = "radar",
+    ):
         self.model, self.scene, self.ownship, self.name = model, scene, ownship, name
         self.times = None if times is None else np.asarray(times, dtype=np.float64)
         self.frame_ids = None if frame_ids is None else np.asarray(frame_ids, dtype=np.int64)
-        if self.frame_ids is not None and (self.times is None or self.frame_ids.shape != self.times.shape
-                                           or (np.diff(self.times) <= 0).any()):
+        if self.frame_ids is not None and (
+            self.times is None or self.frame_ids.shape != self.times.shape or (np.diff(self.times) <= 0).any()
+        ):
             raise ParameterError("frame_ids", "expected one frame id per time, with strictly increasing times")
         self.rate_hz = 1.0 / float(model.config.rotation_period_s)
         self.phase_s = float(phase_s)
@@ -71,8 +89,14 @@ class RadarSensor:
         return [radar_mount(self.model.config, self.ownship, self.name, topics)]
 
     def parameters(self) -> dict[str, Any]:
-        return {"kind": "radar", "rate_hz": self.rate_hz, "phase_s": self.phase_s, "seed": self.model.seed,
-                "carrier": self.ownship, "config": self.model.config.model_dump(mode="json", exclude={"fit"})}
+        return {
+            "kind": "radar",
+            "rate_hz": self.rate_hz,
+            "phase_s": self.phase_s,
+            "seed": self.model.seed,
+            "carrier": self.ownship,
+            "config": self.model.config.model_dump(mode="json", exclude={"fit"}),
+        }
 
     def capture(self, t: float, frame: int) -> RadarScan:
         from seatwin.sensors.radar.world import scan_scene

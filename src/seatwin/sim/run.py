@@ -57,8 +57,9 @@ def scenario_sensors(scenario: Scenario, settings: SimulationSettings) -> list[S
         from seatwin.sim.radar import RadarSensor
 
         cfg = load_radar_config(settings.radar_config) if settings.radar_config else RadarConfig()
-        sensors.append(RadarSensor(RadarModel(cfg, seed=scenario.seed), scene, scenario.ownship.name,
-                                   with_spokes=settings.radar_spokes))
+        sensors.append(
+            RadarSensor(RadarModel(cfg, seed=scenario.seed), scene, scenario.ownship.name, with_spokes=settings.radar_spokes)
+        )
     return sensors
 
 
@@ -94,7 +95,13 @@ def simulate_scenario(
         raise InputError(run_dir, f"cannot create the run directory: {exc.strerror or exc}") from None
     yaml_path, _ = save_scenario(scenario, run_dir / RESOLVED_SCENARIO)
     return simulate(
-        sensors, run_dir, t0, t1, fmt=settings.fmt, progress=progress, on_frame=on_frame,
+        sensors,
+        run_dir,
+        t0,
+        t1,
+        fmt=settings.fmt,
+        progress=progress,
+        on_frame=on_frame,
         writer_kwargs={
             "origin": scenario.origin,
             "seed": scenario.seed,

@@ -95,8 +95,14 @@ class LidarSensor(Periodic):
     lidar's own); a different one simulates a miscalibrated extrinsic the consumer never sees.
     """
 
-    def __init__(self, lidar: Lidar, phase_s: float = 0.0, name: str | None = None, carrier: str | None = None,
-                 recorded_mount: LidarMount | None = None):
+    def __init__(
+        self,
+        lidar: Lidar,
+        phase_s: float = 0.0,
+        name: str | None = None,
+        carrier: str | None = None,
+        recorded_mount: LidarMount | None = None,
+    ):
         self.lidar = lidar
         self.recorded_mount = recorded_mount if recorded_mount is not None else lidar.mount
         self.name = name or "lidar"
@@ -108,8 +114,11 @@ class LidarSensor(Periodic):
         if self.carrier is None:
             return []
         m = self.recorded_mount
-        return [StaticTransform(topics.body(self.carrier), self.name, (float(m.x), float(m.y), float(m.z)),
-                                quaternion_from_matrix(m.rotation()))]
+        return [
+            StaticTransform(
+                topics.body(self.carrier), self.name, (float(m.x), float(m.y), float(m.z)), quaternion_from_matrix(m.rotation())
+            )
+        ]
 
     def parameters(self) -> dict[str, Any]:
         cfg = self.lidar.config.model_dump()
@@ -131,5 +140,6 @@ class LidarSensor(Periodic):
 
     def record(self, writer: RecordingWriter, t: float, data: Any) -> None:
         s = data
-        writer.write_sweep(writer.topics.topic("lidar", sensor=self.name), self.name, t,
-                           s.x, s.y, s.z, s.intensity, s.ring, s.time)
+        writer.write_sweep(
+            writer.topics.topic("lidar", sensor=self.name), self.name, t, s.x, s.y, s.z, s.intensity, s.ring, s.time
+        )

@@ -21,22 +21,33 @@ class SimulationSettings(Settings):
     """Every choice of ``simulate`` besides the scenario and the time window."""
 
     sensors: tuple[Literal["lidar", "radar"], ...] = Field(
-        ("lidar",), min_length=1, description="Sensors on the ownship, simulated in one loop (ground truth is always recorded).")
+        ("lidar",), min_length=1, description="Sensors on the ownship, simulated in one loop (ground truth is always recorded)."
+    )
     seed: int | None = Field(None, description="Seed of every random draw (default: the scenario's).")
     lidar_preset: Literal["vlp16", "vlp16-thesis"] = Field(
-        "vlp16", description="vlp16 (1800 columns, the real sensor at 10 Hz) or vlp16-thesis (1024 columns).")
+        "vlp16", description="vlp16 (1800 columns, the real sensor at 10 Hz) or vlp16-thesis (1024 columns)."
+    )
     lidar_mode: Literal["raycast", "depthbuffer", "depthbuffer-legacy"] = Field(
-        "raycast", description="Lidar range model: exact ray casting, or the thesis's depth-buffer model (with or "
-                               "without the spherical projection filter).")
-    ray_drop: float | None = Field(None, ge=0.0, lt=1.0, description="Ray-drop probability (default: the preset's 0.8, as the thesis).")
+        "raycast",
+        description="Lidar range model: exact ray casting, or the thesis's depth-buffer model (with or "
+        "without the spherical projection filter).",
+    )
+    ray_drop: float | None = Field(
+        None, ge=0.0, lt=1.0, description="Ray-drop probability (default: the preset's 0.8, as the thesis)."
+    )
     range_noise: float | None = Field(None, ge=0.0, description="Range noise σ [m] (default: the preset's 0.015).")
     dissipation: bool = Field(False, description="Range-dependent return probability (thesis 5.2.2, Fig. 5.10).")
     mount_yaw_bias_deg: float = Field(
-        0.0, description="Lidar turned by this much more than its nominal mount while /tf_static records the nominal "
-                         "one (a miscalibrated extrinsic) [deg].")
+        0.0,
+        description="Lidar turned by this much more than its nominal mount while /tf_static records the nominal "
+        "one (a miscalibrated extrinsic) [deg].",
+    )
     radar_config: str | None = Field(None, description="Radar YAML (default: the built-in radar model).")
-    radar_spokes: bool = Field(False, description="Keep each radar rotation's raw spokes (Gemini RadarStreamingRequest "
-                                                   "layout) on the captured frames, for export or streaming.")
+    radar_spokes: bool = Field(
+        False,
+        description="Keep each radar rotation's raw spokes (Gemini RadarStreamingRequest "
+        "layout) on the captured frames, for export or streaming.",
+    )
     fmt: Literal["mcap", "sqlite3", "ros1"] = Field("mcap", description="Bag format.")
     ground_truth_rate_hz: float = Field(10.0, gt=0, description="Rate of the ground-truth topics [Hz].")
 

@@ -20,8 +20,7 @@ def periodic_times(t0: float, t1: float, rate_hz: float, phase_s: float = 0.0) -
     return float(t0) + rel[(rel >= 0) & (rel < span - TIME_EPS_S)]
 
 
-def time_window(scenario_start: float, scenario_end: float, start: float | None,
-                duration: float | None) -> tuple[float, float]:
+def time_window(scenario_start: float, scenario_end: float, start: float | None, duration: float | None) -> tuple[float, float]:
     """The simulated interval [t0, t1) from POSIX ``start`` (default: the scenario's) for ``duration`` seconds.
 
     Checked relative to the scenario's start, so float64 POSIX spacing (2.4e-7 s) never fails the last frame.

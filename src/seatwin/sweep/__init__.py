@@ -11,6 +11,18 @@ from seatwin.sweep.runner import run_sweep
 from seatwin.sweep.settings import SweepSettings
 
 __all__ = [
-    "DEGRADATIONS", "Degradation", "KindSpearman", "StrengthSummary", "SweepResult", "SweepRow", "SweepSettings",
-    "degradation", "degradations", "plot_sweep", "run_sweep", "spearman_by_kind", "summarise", "write_results",
+    "DEGRADATIONS",
+    "Degradation",
+    "KindSpearman",
+    "StrengthSummary",
+    "SweepResult",
+    "SweepRow",
+    "SweepSettings",
+    "degradation",
+    "degradations",
+    "plot_sweep",
+    "run_sweep",
+    "spearman_by_kind",
+    "summarise",
+    "write_results",
 ]

@@ -53,14 +53,22 @@ class Degradation:
 DEGRADATIONS: dict[str, Degradation] = {
     d.kind: d
     for d in (
-        Degradation("noise", "m", "range noise σ [m]", VLP16.range_noise_std, (0.05, 0.1, 0.2, 0.4),
-                    lambda s: {"range_noise": s}),
-        Degradation("drop", "", "ray-drop probability", VLP16.drop_probability, (0.85, 0.9, 0.95, 0.98),
-                    lambda s: {"ray_drop": s}, hi=0.999),
-        Degradation("dissipation", "", "range dissipation (0 off, 1 on)", 0.0, (1.0,),
-                    lambda s: {"dissipation": True}, hi=1.0),
-        Degradation("mount", "deg", "mount yaw bias [deg]", 0.0, (0.5, 1.0, 2.0, 4.0),
-                    lambda s: {"mount_yaw_bias_deg": s}, hi=90.0),
+        Degradation(
+            "noise", "m", "range noise σ [m]", VLP16.range_noise_std, (0.05, 0.1, 0.2, 0.4), lambda s: {"range_noise": s}
+        ),
+        Degradation(
+            "drop",
+            "",
+            "ray-drop probability",
+            VLP16.drop_probability,
+            (0.85, 0.9, 0.95, 0.98),
+            lambda s: {"ray_drop": s},
+            hi=0.999,
+        ),
+        Degradation("dissipation", "", "range dissipation (0 off, 1 on)", 0.0, (1.0,), lambda s: {"dissipation": True}, hi=1.0),
+        Degradation(
+            "mount", "deg", "mount yaw bias [deg]", 0.0, (0.5, 1.0, 2.0, 4.0), lambda s: {"mount_yaw_bias_deg": s}, hi=90.0
+        ),
     )
 }
 

@@ -31,24 +31,21 @@ def plot_sweep(result: SweepResult, path: str | Path) -> Path:
         lo = [m - s.ahed_min for m, s in zip(mean, summary)]
         hi = [s.ahed_max - m for m, s in zip(mean, summary)]
         if floor:
-            ax.axhspan(min(floor), max(floor), color="0.85", zorder=0,
-                       label=f"seed-to-seed ({len(floor)} pairs)")
+            ax.axhspan(min(floor), max(floor), color="0.85", zorder=0, label=f"seed-to-seed ({len(floor)} pairs)")
             ax.axhline(sum(floor) / len(floor), color="0.6", lw=0.8, zorder=0)
         ax.errorbar(x, mean, yerr=[lo, hi], fmt="o-", capsize=4, color="C0", label="mean, min–max over seeds")
-        ax.scatter([r.strength for r in rows], [r.ahed for r in rows], s=10, color="C1", alpha=0.7, zorder=3,
-                   label="each seed")
+        ax.scatter([r.strength for r in rows], [r.ahed for r in rows], s=10, color="C1", alpha=0.7, zorder=3, label="each seed")
         r = rho[kind].rho_points
         ax.set_title(f"{kind}: Spearman ρ = {r:.2f}" if r is not None else f"{kind}: ρ undefined")
         ax.set_xlabel(degradation(kind).label + " (leftmost: reference)")
         ax.set_ylabel("AHED vs seed-matched reference")
         ax.set_ylim(bottom=0)
         ax.grid(alpha=0.3)
-    for ax in list(axes.flat)[len(kinds):]:
+    for ax in list(axes.flat)[len(kinds) :]:
         ax.set_visible(False)
     axes.flat[0].legend(fontsize=7, loc="upper left")
     s = result.settings
-    fig.suptitle(f"Fidelity sweep: {s.scenario}, {s.duration:g} s, tuning {s.tuning}, seeds {list(s.seeds)}",
-                 fontsize=10)
+    fig.suptitle(f"Fidelity sweep: {s.scenario}, {s.duration:g} s, tuning {s.tuning}, seeds {list(s.seeds)}", fontsize=10)
     fig.tight_layout()
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)

@@ -114,12 +114,18 @@ def summarise(rows: list[SweepRow]) -> list[StrengthSummary]:
     for s in sorted({r.strength for r in rows}):
         v = np.array([r.ahed for r in rows if r.strength == s and r.ahed is not None], dtype=float)
         frac = [r.fraction_only_one for r in rows if r.strength == s and r.fraction_only_one is not None]
-        out.append(StrengthSummary(
-            s, sum(1 for r in rows if r.strength == s), int(v.size),
-            float(v.mean()) if v.size else None, float(v.min()) if v.size else None,
-            float(v.max()) if v.size else None, float(v.std(ddof=1)) if v.size > 1 else None,
-            float(np.mean(frac)) if frac else None,
-        ))
+        out.append(
+            StrengthSummary(
+                s,
+                sum(1 for r in rows if r.strength == s),
+                int(v.size),
+                float(v.mean()) if v.size else None,
+                float(v.min()) if v.size else None,
+                float(v.max()) if v.size else None,
+                float(v.std(ddof=1)) if v.size > 1 else None,
+                float(np.mean(frac)) if frac else None,
+            )
+        )
     return out
 
 

@@ -28,18 +28,28 @@ from seatwin.sweep.results import FLOOR_KIND, REFERENCE_KIND, SweepResult, Sweep
 from seatwin.sweep.settings import SweepSettings
 
 
-def _row(kind: str, strength: float, seed: int, ref_seed: int, ref: Tracks, other: Tracks, truth: TruthSet,
-         settings: SweepSettings) -> SweepRow:
+def _row(
+    kind: str, strength: float, seed: int, ref_seed: int, ref: Tracks, other: Tracks, truth: TruthSet, settings: SweepSettings
+) -> SweepRow:
     """AHED (mean over targets) of ``other`` against ``ref``, with the instants only one of them tracked."""
     targets = compare(ref, other, truth, settings.tuning, settings.comparison).targets
     ahed = [t.ahed for t in targets if t.ahed is not None]
     frac = [t.fraction_only_one for t in targets if t.fraction_only_one is not None]
-    return SweepRow(kind, float(strength), int(seed), int(ref_seed), float(np.mean(ahed)) if ahed else None,
-                    int(sum(t.n_common for t in targets)), float(np.mean(frac)) if frac else None, len(ahed))
+    return SweepRow(
+        kind,
+        float(strength),
+        int(seed),
+        int(ref_seed),
+        float(np.mean(ahed)) if ahed else None,
+        int(sum(t.n_common for t in targets)),
+        float(np.mean(frac)) if frac else None,
+        len(ahed),
+    )
 
 
-def run_sweep(out_dir: str | Path, settings: SweepSettings | None = None, *,
-              step: Callable[[str], None] | None = None, **changes: Any) -> SweepResult:
+def run_sweep(
+    out_dir: str | Path, settings: SweepSettings | None = None, *, step: Callable[[str], None] | None = None, **changes: Any
+) -> SweepResult:
     """Run the sweep of ``settings`` (default :class:`SweepSettings`, with field ``changes``) into ``out_dir``.
 
     Track files go to ``out_dir/tracks`` (recordings to ``out_dir/recordings`` if kept);
@@ -68,8 +78,9 @@ def run_sweep(out_dir: str | Path, settings: SweepSettings | None = None, *,
         def run(name: str, seed: int, **fields: Any) -> Tracks:
             """Simulate with SimulationSettings ``fields``, track, keep the track file."""
             rec = rec_root / name
-            simulate_scenario(scenario, rec, start=scenario.start + offset, duration=settings.duration, seed=seed,
-                              progress=False, **fields)
+            simulate_scenario(
+                scenario, rec, start=scenario.start + offset, duration=settings.duration, seed=seed, progress=False, **fields
+            )
             tracks = track_recording(rec, tuning=settings.tuning).tracks
             write_tracks(tracks_dir / f"{name}.csv", tracks)
             if not settings.keep_recordings:

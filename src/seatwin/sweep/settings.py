@@ -20,19 +20,25 @@ class SweepSettings(Settings):
 
     scenario: str = Field("ferry_crossing", description="Built-in scenario name or scenario file.")
     kinds: tuple[str, ...] = Field(
-        tuple(DEGRADATIONS), description=f"Degradations to sweep, in this order; some of {', '.join(DEGRADATIONS)}.")
+        tuple(DEGRADATIONS), description=f"Degradations to sweep, in this order; some of {', '.join(DEGRADATIONS)}."
+    )
     strengths: dict[str, tuple[float, ...]] = Field(
-        default_factory=dict, description="Strengths per kind, in the kind's unit, each beyond the reference model "
-                                          "(default: the kind's default strengths).")
+        default_factory=dict,
+        description="Strengths per kind, in the kind's unit, each beyond the reference model "
+        "(default: the kind's default strengths).",
+    )
     seeds: tuple[int, ...] = Field((1, 2, 3), min_length=1, description="Distinct seeds: every point is repeated with each.")
     duration: float = Field(30.0, gt=0, description="Simulated seconds per run.")
     offset: float | None = Field(
-        None, ge=0, description="Window start in seconds after the scenario's start "
-                                "(default: the window centred in the scenario).")
+        None,
+        ge=0,
+        description="Window start in seconds after the scenario's start (default: the window centred in the scenario).",
+    )
     tuning: str = Field(DEFAULT_TUNING, description="Tracker tuning of every run (preset or tuning file).")
     comparison: CompareOptions = Field(
         default_factory=lambda: CompareOptions(both_missing="skip"),
-        description="Conventions of each comparison with the seed-matched reference.")
+        description="Conventions of each comparison with the seed-matched reference.",
+    )
     keep_recordings: bool = Field(False, description="Keep every simulated recording (large).")
 
     @field_validator("kinds")
@@ -82,21 +88,32 @@ class SweepSettings(Settings):
         offset = self.offset if self.offset is not None else max(0.0, (span - self.duration) / 2)
         if offset + self.duration > span + 1e-9:
             param = "duration" if self.offset is None else "offset"
-            raise ParameterError(param, f"the window [{offset:g}, {offset + self.duration:g}] s is not inside the "
-                                        f"scenario's {span:g} s")
+            raise ParameterError(
+                param, f"the window [{offset:g}, {offset + self.duration:g}] s is not inside the scenario's {span:g} s"
+            )
         return float(offset)
 
     def describe(self) -> dict[str, Any]:
         """The settings as ``sweep.json`` records them."""
         ds, c = self.degradations, self.comparison
         return {
-            "scenario": self.scenario, "kinds": list(self.kinds),
+            "scenario": self.scenario,
+            "kinds": list(self.kinds),
             "strengths": {d.kind: list(self.strengths_of(d)) for d in ds},
             "references": {d.kind: d.reference for d in ds},
-            "units": {d.kind: d.unit for d in ds}, "labels": {d.kind: d.label for d in ds},
-            "seeds": list(self.seeds), "duration_s": self.duration, "offset_s": self.offset, "tuning": self.tuning,
+            "units": {d.kind: d.unit for d in ds},
+            "labels": {d.kind: d.label for d in ds},
+            "seeds": list(self.seeds),
+            "duration_s": self.duration,
+            "offset_s": self.offset,
+            "tuning": self.tuning,
             "lidar": "vlp16 preset, exact ray casting",
-            "comparison": {"reference": "the seed-matched reference run", "ahed": "mean over targets of AHED (5.34)",
-                           "hellinger_form": c.form, "both_missing": c.both_missing,
-                           "gate_m": c.gate, "time_tolerance_s": c.time_tolerance},
+            "comparison": {
+                "reference": "the seed-matched reference run",
+                "ahed": "mean over targets of AHED (5.34)",
+                "hellinger_form": c.form,
+                "both_missing": c.both_missing,
+                "gate_m": c.gate,
+                "time_tolerance_s": c.time_tolerance,
+            },
         }

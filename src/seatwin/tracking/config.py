@@ -98,9 +98,7 @@ class TrackerConfig(BaseModel):
         try:
             return self.sensors[name]
         except KeyError:
-            raise InputError(
-                "tuning", f"tuning {self.name!r} has no sensor {name!r}; it has {sorted(self.sensors)}"
-            ) from None
+            raise InputError("tuning", f"tuning {self.name!r} has no sensor {name!r}; it has {sorted(self.sensors)}") from None
 
 
 def _thesis_preset(name: str, q: float, r_range: float, r_bearing: float, r_camera: float) -> dict[str, Any]:

@@ -77,6 +77,14 @@ def simulate(
             zt = zt + rng.standard_normal(zt.shape) * np.sqrt([r_range, r_bearing])
             z = np.concatenate((zt, cartesian_to_polar(clutter, sensor_position)))
         z = z[rng.permutation(z.shape[0])]
-        scans.append(Scan(time=1.0e9 + k * dt, sensor=sensor, kind=kind, z=z,
-                          sensor_north=sensor_position[0], sensor_east=sensor_position[1]))
+        scans.append(
+            Scan(
+                time=1.0e9 + k * dt,
+                sensor=sensor,
+                kind=kind,
+                z=z,
+                sensor_north=sensor_position[0],
+                sensor_east=sensor_position[1],
+            )
+        )
     return SimulatedRun(scans, np.array(truth))

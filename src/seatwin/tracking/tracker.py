@@ -64,7 +64,9 @@ class TrackTable:
     def concatenate(cls, parts: list[TrackTable]) -> TrackTable:
         if not parts:
             return cls(np.zeros(0), np.zeros(0, np.int64), np.zeros(0), np.zeros((0, 4)), np.zeros((0, 4, 4)), np.zeros(0, bool))
-        return cls(*(np.concatenate([getattr(p, f) for p in parts]) for f in ("time", "track_id", "existence", "x", "P", "confirmed")))
+        return cls(
+            *(np.concatenate([getattr(p, f) for p in parts]) for f in ("time", "track_id", "existence", "x", "P", "confirmed"))
+        )
 
 
 def _position_covariance(scan: Scan, z: Array, tuning: SensorTuning) -> Array:
@@ -205,7 +207,11 @@ class JIPDATracker:
         keep = self.r >= c.terminate_threshold
         if not keep.all():
             self.x, self.P, self.r, self.ids, self.confirmed = (
-                self.x[keep], self.P[keep], self.r[keep], self.ids[keep], self.confirmed[keep]
+                self.x[keep],
+                self.P[keep],
+                self.r[keep],
+                self.ids[keep],
+                self.confirmed[keep],
             )
 
     def _initiate(self, scan: Scan, z: Array, tuning: SensorTuning) -> None:
@@ -278,8 +284,9 @@ class TrackRun:
     scan_times: NDArray[np.float64]
 
 
-def run_tracker(tracker: JIPDATracker, scans: Iterable[Scan], on_scan: Callable[[Scan], None] | None = None,
-                source: str = "<scans>") -> TrackRun:
+def run_tracker(
+    tracker: JIPDATracker, scans: Iterable[Scan], on_scan: Callable[[Scan], None] | None = None, source: str = "<scans>"
+) -> TrackRun:
     """Run ``tracker`` over time-ordered ``scans``; the one rule for scans at the same instant.
 
     Scans of several sensors at one instant are all processed, in the given order, and the

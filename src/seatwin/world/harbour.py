@@ -31,11 +31,19 @@ def harbour_from_layout(layout: HarbourLayout = DEFAULT_LAYOUT) -> list[WorldObj
         WorldObject("quay_east", "quay", block(n0, n1, w, w + d, layout.quay_height, QUAY_BASE), REFLECTIVITY["quay"]),
     ]
     for p in layout.piers:
-        objs.append(WorldObject(p.name, "pier", block(p.north_min, p.north_max, p.east_min, p.east_max, p.top, p.base), REFLECTIVITY["pier"]))
+        objs.append(
+            WorldObject(
+                p.name, "pier", block(p.north_min, p.north_max, p.east_min, p.east_max, p.top, p.base), REFLECTIVITY["pier"]
+            )
+        )
     for b in layout.buildings:
         # Buildings stand on the quay: start them at its top so no face hides inside it.
         base = max(b.base, 0.0)
-        objs.append(WorldObject(b.name, "building", block(b.north_min, b.north_max, b.east_min, b.east_max, b.top, base), REFLECTIVITY["building"]))
+        objs.append(
+            WorldObject(
+                b.name, "building", block(b.north_min, b.north_max, b.east_min, b.east_max, b.top, base), REFLECTIVITY["building"]
+            )
+        )
     for m in layout.moored_boats:
         boat = generic(m.length, m.beam, m.height, name=m.name).mesh.copy()
         boat.vertices = boat.vertices @ yaw_matrix(np.radians(m.heading_deg)).T + [m.north, m.east, 0.0]
@@ -72,7 +80,14 @@ def _boxes(raster: LandRaster, mask: np.ndarray, top: float, base: float) -> tri
         return None
     res = raster.resolution
     parts = [
-        block(raster.origin_north + r0 * res, raster.origin_north + r1 * res, raster.origin_east + c0 * res, raster.origin_east + c1 * res, top, base)
+        block(
+            raster.origin_north + r0 * res,
+            raster.origin_north + r1 * res,
+            raster.origin_east + c0 * res,
+            raster.origin_east + c1 * res,
+            top,
+            base,
+        )
         for r0, r1, c0, c1 in rects
     ]
     return merge(parts)
@@ -114,4 +129,8 @@ def build_harbour(spec: object = "default") -> list[WorldObject]:
         return harbour_from_layout(DEFAULT_LAYOUT)
     if isinstance(spec, (str, Path)) and Path(spec).suffix.lower() in (".bin", ".yaml", ".yml"):
         return harbour_from_raster(read_land_raster(spec))
-    raise InputError(None, f"unknown harbour {spec!r}; expected 'default', 'none' or a land raster .bin/.yaml path", where="environment.harbour")
+    raise InputError(
+        None,
+        f"unknown harbour {spec!r}; expected 'default', 'none' or a land raster .bin/.yaml path",
+        where="environment.harbour",
+    )

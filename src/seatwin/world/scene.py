@@ -108,7 +108,9 @@ class _PoseTrack:
         tt = np.asarray(t, dtype=np.float64)
         if tt.size and (float(tt.min()) < self.traj.start - 1e-6 or float(tt.max()) > self.traj.end + 1e-6 or np.isnan(tt).any()):
             self.traj.state_at(tt)  # raises the scenario's own InputError naming the span
-        return Poses(np.interp(tt, self.time, self.north), np.interp(tt, self.time, self.east), np.interp(tt, self.time, self.heading))
+        return Poses(
+            np.interp(tt, self.time, self.north), np.interp(tt, self.time, self.east), np.interp(tt, self.time, self.heading)
+        )
 
 
 class Scene:

@@ -48,8 +48,8 @@ def hull(
         xs_b = h_len - bow * length
         xs_s = -h_len + stern * length
         pts = [(xs_s, -h_beam * scale), (xs_s, h_beam * scale), (xs_b, -h_beam * scale), (xs_b, h_beam * scale)]
-        pts += [(h_len * scale ** 0.2, -h_beam * taper_tip), (h_len * scale ** 0.2, h_beam * taper_tip)]
-        pts += [(-h_len * scale ** 0.2, -h_beam * scale * (1 - stern)), (-h_len * scale ** 0.2, h_beam * scale * (1 - stern))]
+        pts += [(h_len * scale**0.2, -h_beam * taper_tip), (h_len * scale**0.2, h_beam * taper_tip)]
+        pts += [(-h_len * scale**0.2, -h_beam * scale * (1 - stern)), (-h_len * scale**0.2, h_beam * scale * (1 - stern))]
         return pts
 
     deck = outline(1.0, 0.25 if bow > 0.05 else 1.0)
@@ -62,4 +62,3 @@ def hull(
 def merge(parts: Sequence[trimesh.Trimesh]) -> trimesh.Trimesh:
     """One mesh of all ``parts``."""
     return trimesh.util.concatenate(list(parts))
-

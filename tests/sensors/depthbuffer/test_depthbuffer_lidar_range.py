@@ -59,7 +59,12 @@ def test_range_model_matches_the_snapshot_model(scene: Scene) -> None:
     caster = make_caster(scene.posed_meshes(1.0))
     from seatwin.sensors.lidar_physics import water_limit
 
-    snap = db.cast(caster, mount.translation, mount.rotation(), cut=lambda o, u: water_limit(o[:, 2].astype(np.float32), u[:, 2].astype(np.float32), 100.0))
+    snap = db.cast(
+        caster,
+        mount.translation,
+        mount.rotation(),
+        cut=lambda o, u: water_limit(o[:, 2].astype(np.float32), u[:, 2].astype(np.float32), 100.0),
+    )
     hit = res.object_id >= 0
     assert (hit != snap.hit[b.beam]).sum() <= 2  # float32 ties at silhouettes
     both = hit & snap.hit[b.beam]

@@ -143,7 +143,9 @@ def test_filter_projection_4_18_is_4_9_of_the_reference_model() -> None:
     th = rng.uniform(-math.pi / 8, math.pi / 8, 100)
     ph = rng.uniform(-D(15), D(15), 100)
     r = rng.uniform(1, 99, 100)
-    np.testing.assert_allclose(project_reference(th, ph, r, LIDAR), discrete_coordinates(reference_point(th, ph, r), LIDAR), rtol=1e-9, atol=1e-6)
+    np.testing.assert_allclose(
+        project_reference(th, ph, r, LIDAR), discrete_coordinates(reference_point(th, ph, r), LIDAR), rtol=1e-9, atol=1e-6
+    )
     # 4.17 makes the top beam at the sector edge land exactly on the image's top edge
     top = project_reference(math.pi / 8, D(15), 50.0, LIDAR)
     assert top[1] == pytest.approx(LIDAR.n_ch, abs=1e-6)

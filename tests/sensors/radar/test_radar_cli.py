@@ -41,12 +41,26 @@ def test_radar_fit_cli_bad_input(tmp_path, capsys):
 
 def test_radar_simulate_csv_and_bag(tmp_path):
     csv_path, bag = tmp_path / "plots.csv", tmp_path / "run"
-    args = ["radar", "simulate", "ferry_crossing", "--duration", "5", "--seed", "3", "--out", str(csv_path), "--out-bag", str(bag)]
+    args = [
+        "radar",
+        "simulate",
+        "ferry_crossing",
+        "--duration",
+        "5",
+        "--seed",
+        "3",
+        "--out",
+        str(csv_path),
+        "--out-bag",
+        str(bag),
+    ]
     assert run(args) == 0
     rows = list(csv.DictReader(csv_path.open()))
     assert {r["kind"] for r in rows} >= {"vessel", "land"}
     # Bit-identical rerun.
-    assert run(["radar", "simulate", "ferry_crossing", "--duration", "5", "--seed", "3", "--out", str(tmp_path / "again.csv")]) == 0
+    assert (
+        run(["radar", "simulate", "ferry_crossing", "--duration", "5", "--seed", "3", "--out", str(tmp_path / "again.csv")]) == 0
+    )
     assert (tmp_path / "again.csv").read_text() == csv_path.read_text()
     from seatwin.recording import open_bag
 

@@ -74,7 +74,8 @@ def test_fit_on_the_models_own_recording():
     """The replica simulated with known parameters: the fit finds them (plots lie on the hull's near
     side, so the range bias absorbs a metre or two of geometry)."""
     from seatwin.fidelity.joyride import observations
-    from seatwin.fidelity.synthetic import TOY_RADAR as TRUE_RADAR, toy_dataset
+    from seatwin.fidelity.synthetic import TOY_RADAR as TRUE_RADAR
+    from seatwin.fidelity.synthetic import toy_dataset
 
     res = fit_radar(observations(toy_dataset()), RadarConfig(), n_boot=20)
     e = res.report["estimates"]

@@ -17,8 +17,11 @@ def _box(obj: int, north: float, east: float, extents=(8.0, 3.0, 2.0)) -> MeshDa
     return MeshData.from_trimesh(b, obj).transformed(np.eye(3), [north, east, 0.0])
 
 
-SURE = {"detection": {"snr_ref_db": 60.0, "pd_max": 1.0}, "clutter": {"kind": "none"},
-        "noise": {"range_sigma_m": 0.0, "bearing_sigma_deg": 0.0}}
+SURE = {
+    "detection": {"snr_ref_db": 60.0, "pd_max": 1.0},
+    "clutter": {"kind": "none"},
+    "noise": {"range_sigma_m": 0.0, "bearing_sigma_deg": 0.0},
+}
 ANT = AntennaPose(0.0, 0.0, 0.0, 3.0)
 
 

@@ -116,7 +116,9 @@ def test_map_clutter_follows_the_map():
     assert len(pts) > 0
     assert ((pts[:, 0] >= 0) & (pts[:, 0] < 100) & (pts[:, 1] >= 100) & (pts[:, 1] < 200)).all()
     assert map_density(cmap, np.array([50.0, 150.0]), np.array([150.0, 150.0])).tolist() == [1e-4, 0.0]
-    assert np.mean([len(clutter_points(frame_rng(3, "t", k), cfg, (0, 0), 0, 500)) for k in range(300)]) == pytest.approx(1.0, rel=0.2)
+    assert np.mean([len(clutter_points(frame_rng(3, "t", k), cfg, (0, 0), 0, 500)) for k in range(300)]) == pytest.approx(
+        1.0, rel=0.2
+    )
     with pytest.raises(ValueError):
         ClutterConfig(kind="map")
 

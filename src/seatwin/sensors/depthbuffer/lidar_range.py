@@ -88,7 +88,9 @@ def column_rotations(batch: BeamBatch) -> NDArray[np.float64]:
             rot[~good] = rot[near]
             # make the borrowed rotation map the column's beam exactly
             bad = ~good
-            rot[bad] = np.einsum("nij,njk->nik", _smallest_rotation(np.einsum("nij,nj->ni", rot[bad], s_f[bad]), d_f[bad]), rot[bad])
+            rot[bad] = np.einsum(
+                "nij,njk->nik", _smallest_rotation(np.einsum("nij,nj->ni", rot[bad], s_f[bad]), d_f[bad]), rot[bad]
+            )
     elif len(cols):
         rot = _smallest_rotation(s_f, d_f)
     return rot[inv]

@@ -119,7 +119,15 @@ def fig_verification(path: Path, results: dict, rings: dict | None = None) -> Pa
     ax = axes[0]
     colors = {"filter": "tab:blue", "legacy": "tab:orange"}
     for name, res in results.items():
-        ax.semilogy(res.range, np.maximum(res.distance, 1e-5), ".", ms=2.5, alpha=0.5, color=colors.get(name), label=f"{name} (p99 {np.percentile(res.distance, 99):.3g} m)")
+        ax.semilogy(
+            res.range,
+            np.maximum(res.distance, 1e-5),
+            ".",
+            ms=2.5,
+            alpha=0.5,
+            color=colors.get(name),
+            label=f"{name} (p99 {np.percentile(res.distance, 99):.3g} m)",
+        )
     any_res = next(iter(results.values()))
     ax.axhline(any_res.eps_max, color="r", ls="--", label=f"ε_max = {any_res.eps_max:.3g} m")
     ax.set_xlabel("range of the exact point [m]")
@@ -140,4 +148,3 @@ def fig_verification(path: Path, results: dict, rings: dict | None = None) -> Pa
     fig.savefig(path, dpi=90)
     plt.close(fig)
     return path
-

@@ -46,7 +46,9 @@ DEFAULT_TARGETS: tuple[tuple[float, float, float, str], ...] = (
 SENSOR_HEIGHT = 3.0
 
 
-def verification_scene(targets: tuple[tuple[float, float, float, str], ...] = DEFAULT_TARGETS, harbour: object = "default") -> object:
+def verification_scene(
+    targets: tuple[tuple[float, float, float, str], ...] = DEFAULT_TARGETS, harbour: object = "default"
+) -> object:
     """The default harbour with stationary vessels at the given ranges/bearings from the origin."""
     from seatwin.scenario.model import Trajectory
     from seatwin.world.harbour import build_harbour

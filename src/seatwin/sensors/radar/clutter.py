@@ -19,14 +19,18 @@ def annulus_area(min_range: float, max_range: float) -> float:
     return float(np.pi * (max_range**2 - min_range**2))
 
 
-def _uniform_annulus(rng: np.random.Generator, density_m2: float, center: tuple[float, float], rmin: float, rmax: float) -> NDArray[np.float64]:
+def _uniform_annulus(
+    rng: np.random.Generator, density_m2: float, center: tuple[float, float], rmin: float, rmax: float
+) -> NDArray[np.float64]:
     n = rng.poisson(density_m2 * annulus_area(rmin, rmax))
     r = np.sqrt(rng.uniform(rmin**2, rmax**2, n))
     b = rng.uniform(0.0, 2 * np.pi, n)
     return np.column_stack([center[0] + r * np.cos(b), center[1] + r * np.sin(b)])
 
 
-def _map_points(rng: np.random.Generator, cmap: ClutterMap, center: tuple[float, float], rmin: float, rmax: float) -> NDArray[np.float64]:
+def _map_points(
+    rng: np.random.Generator, cmap: ClutterMap, center: tuple[float, float], rmin: float, rmax: float
+) -> NDArray[np.float64]:
     d = np.asarray(cmap.density, float)
     rows, cols = d.shape
     n0 = cmap.north0_m + np.arange(rows) * cmap.cell_m
@@ -38,15 +42,19 @@ def _map_points(rng: np.random.Generator, cmap: ClutterMap, center: tuple[float,
     ri, ci = np.nonzero(near)
     counts = rng.poisson(d[ri, ci] * cmap.cell_m**2)
     ri, ci = np.repeat(ri, counts), np.repeat(ci, counts)
-    pts = np.column_stack([
-        n0[ri] + rng.uniform(0.0, cmap.cell_m, len(ri)),
-        e0[ci] + rng.uniform(0.0, cmap.cell_m, len(ci)),
-    ])
+    pts = np.column_stack(
+        [
+            n0[ri] + rng.uniform(0.0, cmap.cell_m, len(ri)),
+            e0[ci] + rng.uniform(0.0, cmap.cell_m, len(ci)),
+        ]
+    )
     if cmap.outside_density > 0:
         out = _uniform_annulus(rng, cmap.outside_density, center, rmin, rmax)
         inside = (
-            (out[:, 0] >= cmap.north0_m) & (out[:, 0] < cmap.north0_m + rows * cmap.cell_m)
-            & (out[:, 1] >= cmap.east0_m) & (out[:, 1] < cmap.east0_m + cols * cmap.cell_m)
+            (out[:, 0] >= cmap.north0_m)
+            & (out[:, 0] < cmap.north0_m + rows * cmap.cell_m)
+            & (out[:, 1] >= cmap.east0_m)
+            & (out[:, 1] < cmap.east0_m + cols * cmap.cell_m)
         )
         pts = np.vstack([pts, out[~inside]])
     r = np.hypot(pts[:, 0] - center[0], pts[:, 1] - center[1])
@@ -65,7 +73,9 @@ def clutter_points(
     return _map_points(rng, cfg.map, center, min_range, max_range)
 
 
-def expected_clutter(cfg: ClutterConfig, center: tuple[float, float], min_range: float, max_range: float, n_mc: int = 20000) -> float:
+def expected_clutter(
+    cfg: ClutterConfig, center: tuple[float, float], min_range: float, max_range: float, n_mc: int = 20000
+) -> float:
     """Expected number of false plots per scan at ``center`` (exact for uniform, Monte Carlo for a map)."""
     if cfg.kind == "none":
         return 0.0

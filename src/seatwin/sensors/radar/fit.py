@@ -70,14 +70,18 @@ class RadarObservations:
 
     def subset(self, idx: ArrayLike) -> RadarObservations:
         i = np.asarray(idx)
-        return RadarObservations(self.time[i], [self.plots[k] for k in i], self.antenna[i], self.truth[i], self.target_area_m2[i], self.source)
+        return RadarObservations(
+            self.time[i], [self.plots[k] for k in i], self.antenna[i], self.truth[i], self.target_area_m2[i], self.source
+        )
 
 
 SNR_DB_BOUNDS = (-30.0, 80.0)
 """Search bounds of the fitted reference SNR [dB]."""
 
 
-def polar_residuals(plots: NDArray[np.float64], antenna: NDArray[np.float64], target: NDArray[np.float64]) -> tuple[NDArray, NDArray, float]:
+def polar_residuals(
+    plots: NDArray[np.float64], antenna: NDArray[np.float64], target: NDArray[np.float64]
+) -> tuple[NDArray, NDArray, float]:
     """Range [m] and bearing [rad] residuals of plots about a target seen from the antenna; the target's range."""
     dp = plots - antenna
     dt = target - antenna
@@ -100,7 +104,13 @@ class Association:
     clutter: list[NDArray[np.float64]]
 
 
-def associate(obs: RadarObservations, gate_m: float, centre: tuple[float, float] = (0.0, 0.0), scale: tuple[float, float] | None = None, k_sigma: float = 4.0) -> Association:
+def associate(
+    obs: RadarObservations,
+    gate_m: float,
+    centre: tuple[float, float] = (0.0, 0.0),
+    scale: tuple[float, float] | None = None,
+    k_sigma: float = 4.0,
+) -> Association:
     """Split plots into target-originated (within ``gate_m``, and within ``k_sigma`` of ``centre``
     in (range, bearing) when ``scale`` is given) and clutter."""
     n, J = obs.truth.shape[:2]
@@ -147,7 +157,9 @@ def _robust(x: NDArray[np.float64]) -> tuple[float, float]:
     return med, float(1.4826 * np.median(np.abs(x - med))) or float(np.std(x)) or 1.0
 
 
-def fit_pd(range_m: NDArray[np.float64], area: NDArray[np.float64], detected: NDArray[np.bool_], base: DetectionConfig) -> DetectionConfig:
+def fit_pd(
+    range_m: NDArray[np.float64], area: NDArray[np.float64], detected: NDArray[np.bool_], base: DetectionConfig
+) -> DetectionConfig:
     """Maximum-likelihood ``snr_ref_db`` and ``pd_max`` of the Swerling model (Bernoulli likelihood)."""
     from scipy.optimize import minimize
 
@@ -193,7 +205,9 @@ def poisson_ci(k: int, z_level: float = 0.95) -> tuple[float, float]:
     return lo, hi
 
 
-def clutter_map(clutter: list[NDArray[np.float64]], antenna: NDArray[np.float64], cell_m: float, rmin: float, rmax: float) -> ClutterMap:
+def clutter_map(
+    clutter: list[NDArray[np.float64]], antenna: NDArray[np.float64], cell_m: float, rmin: float, rmax: float
+) -> ClutterMap:
     """World-fixed clutter density: counts per cell over (scans in which the cell was covered × cell area)."""
     pts = np.vstack([c for c in clutter if len(c)] or [np.empty((0, 2))])
     lo = antenna.min(0) - rmax
@@ -217,7 +231,9 @@ def clutter_map(clutter: list[NDArray[np.float64]], antenna: NDArray[np.float64]
     return ClutterMap(north0_m=float(n0), east0_m=float(e0), cell_m=cell_m, density=dens.tolist(), outside_density=0.0)
 
 
-def _estimates(obs: RadarObservations, base: RadarConfig, gate_m: float, k_sigma: float, range_bins: NDArray[np.float64]) -> tuple[dict[str, float], Association, DetectionConfig]:
+def _estimates(
+    obs: RadarObservations, base: RadarConfig, gate_m: float, k_sigma: float, range_bins: NDArray[np.float64]
+) -> tuple[dict[str, float], Association, DetectionConfig]:
     a0 = associate(obs, gate_m)
     cr, sr = _robust(a0.dr.ravel())
     cb, sb = _robust(a0.db.ravel())
@@ -255,7 +271,11 @@ def _stat(x: NDArray[np.float64], est: float) -> dict[str, Any]:
     x = x[np.isfinite(x)]
     if len(x) < 2:
         return {"estimate": est, "se": float("nan"), "ci95": [float("nan"), float("nan")]}
-    return {"estimate": est, "se": float(np.std(x, ddof=1)), "ci95": [float(np.percentile(x, 2.5)), float(np.percentile(x, 97.5))]}
+    return {
+        "estimate": est,
+        "se": float(np.std(x, ddof=1)),
+        "ci95": [float(np.percentile(x, 2.5)), float(np.percentile(x, 97.5))],
+    }
 
 
 @dataclass
@@ -319,8 +339,10 @@ def fit_radar(
     notes = []
     ci = report["estimates"]["snr_ref_db"]["ci95"]
     if ci[0] == ci[0] and (ci[1] >= SNR_DB_BOUNDS[1] - 0.1 or ci[0] <= SNR_DB_BOUNDS[0] + 0.1):
-        notes.append("snr_ref_db is weakly identified (its interval reaches the search bound): the detection "
-                     "rate hardly changes over the ranges seen, so pd_max carries the detection model there")
+        notes.append(
+            "snr_ref_db is weakly identified (its interval reaches the search bound): the detection "
+            "rate hardly changes over the ranges seen, so pd_max carries the detection model there"
+        )
     report["notes"] = notes
     yy = assoc.detected[np.isfinite(assoc.range_m)]
     rr = assoc.range_m[np.isfinite(assoc.range_m)]
@@ -331,19 +353,29 @@ def fit_radar(
             continue
         k, n = int(yy[m].sum()), int(m.sum())
         lo, hi = wilson(k, n)
-        table.append({
-            "range_m": [float(bins[b]), float(bins[b + 1])], "scans": n, "detected": k, "rate": k / n, "wilson95": [lo, hi],
-            "model": float(np.mean(detection_probability(rr[m], obs.target_area_m2[np.isfinite(assoc.range_m)][m], det))),
-        })
+        table.append(
+            {
+                "range_m": [float(bins[b]), float(bins[b + 1])],
+                "scans": n,
+                "detected": k,
+                "rate": k / n,
+                "wilson95": [lo, hi],
+                "model": float(np.mean(detection_probability(rr[m], obs.target_area_m2[np.isfinite(assoc.range_m)][m], det))),
+            }
+        )
     report["detection_vs_range"] = table
     n_cl = int(est["clutter_count"])
     lo, hi = poisson_ci(n_cl)
     scale = 1e6 / (len(obs) * annulus_area(base.min_range_m, base.max_range_m))
     report["clutter_density_per_km2_poisson95"] = [lo * scale, hi * scale]
-    noise = base.noise.model_copy(update={
-        "range_bias_m": est["range_bias_m"], "range_sigma_m": max(est["range_sigma_m"], 0.0),
-        "bearing_bias_deg": est["bearing_bias_deg"], "bearing_sigma_deg": max(est["bearing_sigma_deg"], 0.0),
-    })
+    noise = base.noise.model_copy(
+        update={
+            "range_bias_m": est["range_bias_m"],
+            "range_sigma_m": max(est["range_sigma_m"], 0.0),
+            "bearing_bias_deg": est["bearing_bias_deg"],
+            "bearing_sigma_deg": max(est["bearing_sigma_deg"], 0.0),
+        }
+    )
     if clutter == "map":
         cmap = clutter_map(assoc.clutter, obs.antenna, map_cell_m, base.min_range_m, base.max_range_m)
         ccfg = base.clutter.model_copy(update={"kind": "map", "map": cmap, "density_per_km2": est["clutter_density_per_km2"]})

@@ -101,7 +101,11 @@ class RadarModel:
                 m = u < cfg.land.cell_pd
                 r = cfg.range_start_m + (obj.sample[m] + 0.5) * cfg.range_increment_m
                 cell_area = cfg.spoke_step * r * max(obj.height_m, 0.5)
-                parts.append(Cells(obj.spoke[m], obj.sample[m], np.full(int(m.sum()), obj.object_id), snr_linear(r, cell_area, cfg.detection)))
+                parts.append(
+                    Cells(
+                        obj.spoke[m], obj.sample[m], np.full(int(m.sum()), obj.object_id), snr_linear(r, cell_area, cfg.detection)
+                    )
+                )
             else:
                 pd = float(detection_probability(obj.range_m, obj.area_m2, cfg.detection))
                 if det.random() < pd:
@@ -154,7 +158,9 @@ class RadarModel:
         north = antenna.north + rng_m * np.cos(bearing)
         east = antenna.east + rng_m * np.sin(bearing)
         # Clutter.
-        cl = clutter_points(self._rng("clutter", frame), cfg.clutter, (antenna.north, antenna.east), cfg.min_range_m, cfg.max_range_m)
+        cl = clutter_points(
+            self._rng("clutter", frame), cfg.clutter, (antenna.north, antenna.east), cfg.min_range_m, cfg.max_range_m
+        )
         c_rng = np.hypot(cl[:, 0] - antenna.north, cl[:, 1] - antenna.east)
         c_az = wrap_to_2pi(np.arctan2(cl[:, 1] - antenna.east, cl[:, 0] - antenna.north) - antenna.heading)
         nclut = len(cl)
@@ -179,10 +185,12 @@ class RadarModel:
             extent_m=np.concatenate([blobs.extent_m[keep], np.full(nclut, cfg.range_increment_m)]),
             object_id=np.concatenate([blobs.object_id[keep], np.full(nclut, -1, np.int64)]),
             kind=np.concatenate([kind[keep], np.full(nclut, KIND_CLUTTER, np.int64)]),
-            intensity=np.concatenate([
-                cell_intensity(blobs.snr[keep], cfg.spokes.noise_floor).astype(float),
-                cell_intensity(np.full(nclut, 3.0), cfg.spokes.noise_floor).astype(float),
-            ]),
+            intensity=np.concatenate(
+                [
+                    cell_intensity(blobs.snr[keep], cfg.spokes.noise_floor).astype(float),
+                    cell_intensity(np.full(nclut, 3.0), cfg.spokes.noise_floor).astype(float),
+                ]
+            ),
             spokes=spokes,
             illuminated=objects,
         )

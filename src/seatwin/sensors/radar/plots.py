@@ -132,7 +132,9 @@ def extract_plots(cells: Cells, cfg: RadarConfig) -> Blobs:
             rg = rng_m[g]
             devg = wrap_to_pi(az[g] - ag)
             xg = devg * rg
-            ext = max(float(rg.max() - rg.min()) + cfg.range_increment_m, float(xg.max() - xg.min()) + cfg.spoke_step * float(rg.mean()))
+            ext = max(
+                float(rg.max() - rg.min()) + cfg.range_increment_m, float(xg.max() - xg.min()) + cfg.spoke_step * float(rg.mean())
+            )
             ids, counts = np.unique(cells.object_id[g], return_counts=True)
             out.append((float((wg * rg).sum() / wg.sum()), ag, len(g), ext, int(ids[np.argmax(counts)]), float(wg.max())))
     if not out:
@@ -140,6 +142,10 @@ def extract_plots(cells: Cells, cfg: RadarConfig) -> Blobs:
         return Blobs(e, e.copy(), np.empty(0, np.int64), e.copy(), np.empty(0, np.int64), e.copy())
     arr = list(zip(*out))
     return Blobs(
-        np.asarray(arr[0]), np.asarray(arr[1]), np.asarray(arr[2], np.int64), np.asarray(arr[3]),
-        np.asarray(arr[4], np.int64), np.asarray(arr[5]),
+        np.asarray(arr[0]),
+        np.asarray(arr[1]),
+        np.asarray(arr[2], np.int64),
+        np.asarray(arr[3]),
+        np.asarray(arr[4], np.int64),
+        np.asarray(arr[5]),
     )

@@ -25,7 +25,9 @@ VESSEL_LABELS = frozenset({"vessel", "moored_boat"})
 class SceneCaster:
     """A ray caster over a scene posed at one time (static world + vessels in body frames)."""
 
-    def __init__(self, scene: object, time: float, exclude: Sequence[str] = (), sweep: tuple[float, float, float, float] | None = None):
+    def __init__(
+        self, scene: object, time: float, exclude: Sequence[str] = (), sweep: tuple[float, float, float, float] | None = None
+    ):
         """``sweep = (antenna_north, antenna_east, heading, rotation_period)``: pose each vessel when the
         beam (spoke 0 at the bow at ``time``, turning clockwise) passes it, not at ``time``."""
         self.scene = scene
@@ -105,7 +107,9 @@ def antenna_pose(model: RadarModel, scene: object, ownship: str, time: float) ->
     return AntennaPose(north, east, h, cfg.antenna_height_m)
 
 
-def scan_scene(model: RadarModel, scene: object, ownship: str, frame: int, time: float, with_spokes: bool | None = None) -> RadarScan:
+def scan_scene(
+    model: RadarModel, scene: object, ownship: str, frame: int, time: float, with_spokes: bool | None = None
+) -> RadarScan:
     """One rotation of ``model`` on ``ownship`` in ``scene`` at ``time`` (frame index ``frame``)."""
     ant = antenna_pose(model, scene, ownship, time)
     sweep = (ant.north, ant.east, ant.heading, model.config.rotation_period_s) if model.config.pose_at == "beam" else None
