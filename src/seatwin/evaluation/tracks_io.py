@@ -185,7 +185,7 @@ def read_tracks(path: str | os.PathLike[str]) -> Tracks:
             if len(row) < len(header):
                 raise InputError(path, f"expected {len(header)} fields, got {len(row)}", where=f"line {line}")
 
-            def number(name: str) -> float:
+            def number(name: str, row: list[str] = row, line: int = line) -> float:
                 return parse_finite(row[col[name]].strip(), path, name, line)
 
             t = number("time")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import datetime as dt
 import io
+from types import ModuleType
 
 import numpy as np
 from numpy.typing import NDArray
@@ -13,7 +14,7 @@ from seatwin.evaluation.compare import Comparison, ComparisonSeries
 COLORS = {"real": "#1f77b4", "synthetic": "#d62728", "truth": "#2ca02c"}
 
 
-def _plt():
+def _plt() -> ModuleType:
     import matplotlib
 
     matplotlib.use("Agg", force=False)
@@ -152,7 +153,7 @@ def tracks_figure(comp: Comparison, truth, target: str, title: str, mask=None, e
             _land(ax, mask, extent)
         ax.set_xlim(extent[0], extent[1])
         ax.set_ylim(extent[2], extent[3])
-    fig.suptitle(title + " — 2σ position ellipses (every %d-th instant), land grey" % max(ellipse_every, 1))
+    fig.suptitle(title + f" — 2σ position ellipses (every {max(ellipse_every, 1):d}-th instant), land grey")
     return to_png(fig)
 
 
