@@ -128,7 +128,8 @@ def write_pos(path: Path, t_utc, lat, lon, h, q=None, week_tow: bool = False, sy
         "% program   : RTKPOST ver.2.4.3 b34",
         "% pos mode  : Kinematic",
         "% (lat/lon/height=WGS84/ellipsoidal,Q=1:fix,2:float,3:sbas,4:dgps,5:single,6:ppp,ns=# of satellites)",
-        f"%  {system:<22}latitude(deg) longitude(deg)  height(m)   Q  ns   sdn(m)   sde(m)   sdu(m)  sdne(m)  sdeu(m)  sdun(m) age(s)  ratio",
+        f"%  {system:<22}latitude(deg) longitude(deg)  height(m)   Q  ns   sdn(m)   sde(m)   sdu(m)"
+        "  sdne(m)  sdeu(m)  sdun(m) age(s)  ratio",
     ]
     rows = []
     for s, a, b, c, qq in zip(t_utc, lat, lon, h, q):
@@ -141,7 +142,8 @@ def write_pos(path: Path, t_utc, lat, lon, h, q=None, week_tow: bool = False, sy
             d = dt.datetime.fromtimestamp(round(g, 3), dt.UTC)
             ts = f"{d:%Y/%m/%d %H:%M:%S}.{d.microsecond // 1000:03d}"
         rows.append(
-            f"{ts} {a:14.9f} {b:14.9f} {c:10.4f} {int(qq):3d}  12   0.0050   0.0040   0.0110  -0.0010   0.0010  -0.0030   1.00  999.9"
+            f"{ts} {a:14.9f} {b:14.9f} {c:10.4f} {int(qq):3d}  12   0.0050   0.0040   0.0110"
+            "  -0.0010   0.0010  -0.0030   1.00  999.9"
         )
     path.write_text("\n".join(head + rows) + "\n")
     return path

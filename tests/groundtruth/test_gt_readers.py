@@ -264,10 +264,12 @@ def test_pos_gpst_to_utc(tmp_path: Path, week_tow: bool) -> None:
 def test_pos_hand_values_utc_jst_dms(tmp_path: Path) -> None:
     rest = "   1  12   0.0050   0.0040   0.0110  -0.0010   0.0010  -0.0030   1.00  999.9"
     utc = write(tmp_path, "u.pos", "%  UTC  latitude(deg) longitude(deg)  height(m)  Q\n"
-                f"2020/09/15 10:00:00.000  63.43  10.39  40.0{rest}\n2020/09/15 10:00:01.000  63.43  10.39  40.0{rest}\n")  # fmt: skip
+                f"2020/09/15 10:00:00.000  63.43  10.39  40.0{rest}\n"
+                f"2020/09/15 10:00:01.000  63.43  10.39  40.0{rest}\n")  # fmt: skip
     assert read_rtklib_pos(utc).time[0] == T0
     jst = write(tmp_path, "j.pos", "%  JST  latitude(deg) longitude(deg)  height(m)  Q\n"
-                f"2020/09/15 19:00:00.000  63.43  10.39  40.0{rest}\n2020/09/15 19:00:01.000  63.43  10.39  40.0{rest}\n")  # fmt: skip
+                f"2020/09/15 19:00:00.000  63.43  10.39  40.0{rest}\n"
+                f"2020/09/15 19:00:01.000  63.43  10.39  40.0{rest}\n")  # fmt: skip
     assert read_rtklib_pos(jst).time[0] == T0
     dms = write(tmp_path, "d.pos", "%  GPST  latitude(d'\")  longitude(d'\")  height(m)  Q\n"
                 f"2020/09/15 10:00:18.000  63 25 48.000  -10 23 24.000  40.0{rest}\n"

@@ -24,7 +24,7 @@ from seatwin.groundtruth import (
 from seatwin.groundtruth.vessel import HEADING_ANTENNAS, HEADING_COG
 
 T0 = 1_600_164_000.0
-O = GeodeticOrigin(63.4346, 10.3977)
+ORIGIN = GeodeticOrigin(63.4346, 10.3977)
 
 
 def log_of(t, lat=None, lon=None, name="a.csv", quality=None) -> AntennaLog:
@@ -111,7 +111,7 @@ BAD_SETTINGS = [
 
 @pytest.mark.parametrize(("kwargs", "param"), BAD_SETTINGS)
 def test_compute_ground_truth_errors_name_the_parameter(kwargs: dict, param: str) -> None:
-    args = {"vessels": [VesselSpec("Finn", (Path("a.gpx"), Path("b.gpx")))], "origin": O, **kwargs}
+    args = {"vessels": [VesselSpec("Finn", (Path("a.gpx"), Path("b.gpx")))], "origin": ORIGIN, **kwargs}
     with pytest.raises(ParameterError) as exc:
         compute_ground_truth(**args)
     assert exc.value.param == param and str(exc.value).startswith(f"{param}: ")
@@ -132,7 +132,7 @@ def test_every_parameter_error_maps_to_a_groundtruth_option() -> None:
 
 
 def _antenna(t, north, east, name) -> AntennaLog:
-    lat, lon, _ = ned_to_llh_flat(north, east, np.zeros_like(north), O)
+    lat, lon, _ = ned_to_llh_flat(north, east, np.zeros_like(north), ORIGIN)
     return AntennaLog(t, lat, lon, None, name, "test")
 
 
@@ -145,7 +145,7 @@ def test_two_antennas_heading_position_eps_flags() -> None:
     bow = _antenna(t, n0 + half * np.cos(psi), e0 + half * np.sin(psi), "bow")
     stern = _antenna(t, n0 - 2.01 / 2 * np.cos(psi), e0 - 2.01 / 2 * np.sin(psi), "stern")
     ants = [resample_log(x, t) for x in (bow, stern)]
-    v = build_vessel(VesselSpec("HAVFRUEN", (None, None)), ants, O)  # type: ignore[arg-type]
+    v = build_vessel(VesselSpec("HAVFRUEN", (None, None)), ants, ORIGIN)  # type: ignore[arg-type]
     assert v.heading_source == HEADING_ANTENNAS
     assert v.baseline_m == 2.01 and v.baseline_source == "thesis hand measurement"
     np.testing.assert_allclose(np.degrees(v.heading), np.degrees(np.arctan2(np.sin(psi), np.cos(psi))), atol=1e-6)
@@ -158,11 +158,11 @@ def test_two_antennas_heading_position_eps_flags() -> None:
     assert len(v.time) == len(t), "flagged samples are kept"
     np.testing.assert_allclose(v.v_north[np.r_[5:40, 65 : len(t) - 5]], 2.0, atol=1e-6)  # away from the burst
     np.testing.assert_allclose(np.hypot(v.rel_north, v.rel_east)[ok], 2.01, atol=1e-6)
-    given = build_vessel(VesselSpec("boat", (None, None), 2.6), ants, O)  # type: ignore[arg-type]
+    given = build_vessel(VesselSpec("boat", (None, None), 2.6), ants, ORIGIN)  # type: ignore[arg-type]
     assert given.baseline_source == "given" and np.flatnonzero(given.flags & FLAG_EPS).size == len(t) - 5
-    median = build_vessel(VesselSpec("boat", (None, None)), ants, O)  # type: ignore[arg-type]
+    median = build_vessel(VesselSpec("boat", (None, None)), ants, ORIGIN)  # type: ignore[arg-type]
     assert median.baseline_m == pytest.approx(2.01) and "median" in median.baseline_source
-    strict = build_vessel(VesselSpec("finn", (None, None)), ants, O, eps_threshold_m=1.0)  # type: ignore[arg-type]
+    strict = build_vessel(VesselSpec("finn", (None, None)), ants, ORIGIN, eps_threshold_m=1.0)  # type: ignore[arg-type]
     assert strict.baseline_m == 2.93 and not (strict.flags & FLAG_EPS).any()  # 0.92 m everywhere
 
 
@@ -173,7 +173,7 @@ def test_one_antenna_course_over_ground_and_low_speed() -> None:
     north = np.cumsum(speed * 0.1) * np.cos(np.radians(-60.0))
     east = np.cumsum(speed * 0.1) * np.sin(np.radians(-60.0))
     ant = resample_log(_antenna(t, north, east, "gnss.nmea"), t)
-    v = build_vessel(VesselSpec("ferry", (None,)), [ant], O, smooth_s=0.0)  # type: ignore[arg-type]
+    v = build_vessel(VesselSpec("ferry", (None,)), [ant], ORIGIN, smooth_s=0.0)  # type: ignore[arg-type]
     assert v.heading_source == HEADING_COG and v.eps_gnss is None
     np.testing.assert_allclose(np.degrees(v.heading), -60.0, atol=1e-6)  # filled across the stop
     low = np.flatnonzero(v.flags & FLAG_LOW_SPEED)
@@ -181,4 +181,4 @@ def test_one_antenna_course_over_ground_and_low_speed() -> None:
     assert not (v.flags & FLAG_GAP).any()
     with pytest.raises(InputError, match="never moves"):
         still = resample_log(_antenna(t, np.zeros_like(t), np.zeros_like(t), "moored.nmea"), t)
-        build_vessel(VesselSpec("moored", (Path("moored.nmea"),)), [still], O)
+        build_vessel(VesselSpec("moored", (Path("moored.nmea"),)), [still], ORIGIN)

@@ -245,7 +245,6 @@ def test_range_models_are_selectable() -> None:
 
     def ten_metres(scene: Scene, batch: BeamBatch) -> BeamRanges:
         calls.append(len(batch))
-        n = len(batch)
         hit = batch.directions[:, 2] < 0.0  # upwards only
         r = np.where(hit, np.float32(10.0), np.float32(np.inf)).astype(np.float32)
         nrm = -batch.directions.copy()

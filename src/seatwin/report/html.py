@@ -8,6 +8,7 @@ import html
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
@@ -15,6 +16,9 @@ from numpy.typing import NDArray
 from seatwin.evaluation.compare import Comparison
 from seatwin.evaluation.truth import TruthSet
 from seatwin.report import figures
+
+if TYPE_CHECKING:
+    from seatwin.perception.map_mask import WaterMask
 
 _CSS = """
 body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:2em auto;max-width:1150px;color:#222;padding:0 1em}
@@ -215,8 +219,11 @@ def render_report(results: list[ScenarioResult], title: str = "seatwin compariso
 
 
 def write_report(
-    out_dir: str | os.PathLike[str], results: list[ScenarioResult], title: str = "seatwin comparison report", mask=None
-) -> Path:  # noqa: ANN001
+    out_dir: str | os.PathLike[str],
+    results: list[ScenarioResult],
+    title: str = "seatwin comparison report",
+    mask: WaterMask | None = None,
+) -> Path:
     """Write ``index.html`` (self-contained, works offline) into ``out_dir``; return its path.
 
     ``mask`` is a water mask (``is_water(north, east)``, e.g. :func:`seatwin.perception.map_mask.load_mask`)

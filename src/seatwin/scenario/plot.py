@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -17,11 +18,14 @@ from seatwin.layout import DEFAULT_LAYOUT, HarbourLayout
 from seatwin.scenario.model import Role, Scenario
 from seatwin.scenario.summary import water_fraction
 
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
 LAND = "#d9d2c3"
 WATER = "#e3f0fa"
 
 
-def _draw_harbour(ax, layout: HarbourLayout) -> None:  # type: ignore[no-untyped-def]
+def _draw_harbour(ax: Axes, layout: HarbourLayout) -> None:
     from matplotlib.patches import Polygon, Rectangle
 
     w, n0, n1, depth = layout.half_width, layout.north_min, layout.north_max, layout.land_depth

@@ -24,7 +24,7 @@ from seatwin.perception.measurements import MeasurementKind, Scan, polar_to_cart
 from seatwin.tracking import ekf
 from seatwin.tracking.association import existence_posterior, gate_threshold, jipda_marginals
 from seatwin.tracking.config import SensorTuning, TrackerConfig
-from seatwin.tracking.models import cv_process_noise, cv_transition, model_for_scan
+from seatwin.tracking.models import MeasurementModel, cv_process_noise, cv_transition, model_for_scan
 
 Array = NDArray[np.float64]
 
@@ -164,7 +164,9 @@ class JIPDATracker:
             self._initiate(scan, z[~associated], tuning)
         return self.snapshot()
 
-    def _update(self, model, z: Array, R: Array, g2: float, pd_pg: float, tuning: SensorTuning) -> NDArray[np.bool_]:
+    def _update(
+        self, model: MeasurementModel, z: Array, R: Array, g2: float, pd_pg: float, tuning: SensorTuning
+    ) -> NDArray[np.bool_]:
         x, P, r = self.x, self.P, self.r
         zhat, H = model.predict(x)
         S = ekf.innovation_covariance(P, H, R)

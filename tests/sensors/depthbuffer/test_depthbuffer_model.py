@@ -106,7 +106,7 @@ def _rasterise(tris_v: np.ndarray, cam: DepthCamera) -> np.ndarray:
         qi = to_image_space(tri, cam)
         sx, sy, sz = (qi[:, 0] + 1) * w / 2, (qi[:, 1] + 1) * h / 2, qi[:, 2]
 
-        def edge(a: int, b: int) -> np.ndarray:
+        def edge(a: int, b: int, sx: np.ndarray = sx, sy: np.ndarray = sy) -> np.ndarray:
             return (sx[b] - sx[a]) * (ys - sy[a]) - (sy[b] - sy[a]) * (xs - sx[a])
 
         area = (sx[1] - sx[0]) * (sy[2] - sy[0]) - (sy[1] - sy[0]) * (sx[2] - sx[0])
