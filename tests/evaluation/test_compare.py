@@ -40,8 +40,12 @@ def test_ahed_over_common_instants_and_one_sided_counts(truth, tracks_factory) -
     assert a.mean_covdiff == pytest.approx(0.0, abs=1e-7)
     assert a.anees_real == pytest.approx(0.25 + 1) and a.anees_synthetic == pytest.approx(0.25 + 1)
     assert a.nees_difference_rms == pytest.approx(0.0) and a.rmse_difference_rms == pytest.approx(0.0)
-    # B: neither dataset ever had a track → AHED 0, "full agreement" (thesis scenario 7).
-    assert b.ahed == 0.0 and b.n_common == 0 and b.n_both_missing == 11 and b.fraction_only_one is None
+    # B: neither dataset ever had a track → AHED undefined by default (never "perfect agreement") …
+    assert b.ahed is None and b.n_common == 0 and b.n_both_missing == 11 and b.fraction_only_one is None
+    # … and 0 ("full agreement") only under the thesis's scenario-7 convention.
+    never = compare(real, synt, truth, options=CompareOptions(both_missing="never"))
+    assert never.targets[1].ahed == 0.0
+    assert comparison_table([c])["ahed_mean"] == pytest.approx(H_STD)  # B left out of the mean, not averaged as 0
     series = c.series["A"]
     assert np.isnan(series.hed[:2]).all() and np.allclose(series.hed[2:10], H_STD) and np.isnan(series.hed[10])
 
@@ -87,10 +91,11 @@ def test_table_shape(truth, tracks_factory) -> None:
         ("B", "real"),
     ]
     assert table["ahed_mean_by_tuning"]["real"] == pytest.approx(0.0, abs=1e-7)
-    assert table["ahed_mean"] == pytest.approx(H_STD / 4)
+    assert table["ahed_mean"] == pytest.approx(H_STD / 2)  # A in both tunings; B (never tracked) undefined
     for key in ("ahed", "n_common", "n_only_real", "n_only_synthetic", "mean_covdiff"):
         assert key in table["targets"][0]
-    assert table["conventions"]["both_missing"] == "never"
+    assert table["conventions"]["both_missing"] == "skip"
+    assert table["ahed_n"] == 2 and table["ahed_n_by_tuning"] == {"synthetic": 1, "real": 1}
 
 
 def test_bad_options() -> None:

@@ -67,12 +67,13 @@ def register(app: typer.Typer) -> None:
             ),
         ),
         both_missing: str = typer.Option(
-            "never",
+            "skip",
             "--both-missing",
-            metavar="never|zero|skip",
+            metavar="skip|never|zero",
             help=(
-                "Instants where neither dataset has the target: 'never' skips them but gives AHED 0 to a target "
-                "neither ever tracked (thesis scenario 7); 'zero' counts each as HED 0; 'skip' always skips."
+                "Instants where neither dataset has the target: 'skip' (default) skips them, so a target without "
+                "common instants has AHED undefined and is left out of the means; 'never' skips them but gives AHED 0 "
+                "to a target neither ever tracked (the thesis's scenario 7); 'zero' counts each as HED 0."
             ),
         ),
         all_tracks: bool = typer.Option(False, "--all-tracks", help="Also associate unconfirmed (tentative) tracks."),
@@ -137,16 +138,17 @@ def register(app: typer.Typer) -> None:
             keep_tracks=keep_tracks,
         )
         table = result.table
-        typer.echo(f"{'target':<12} {'tuning':<10} {'AHED':>7} {'common':>6} {'only_r':>6} {'only_s':>6} {'covdiff':>8}")
+        typer.echo(f"{'target':<12} {'tuning':<10} {'AHED':>9} {'common':>6} {'only_r':>6} {'only_s':>6} {'covdiff':>8}")
         for ln in table["targets"]:
-            ahed = "-" if ln["ahed"] is None else f"{ln['ahed']:.4f}"
+            ahed = "undefined" if ln["ahed"] is None else f"{ln['ahed']:.4f}"
             cd = "-" if ln["mean_covdiff"] is None else f"{ln['mean_covdiff']:.4f}"
             typer.echo(
-                f"{ln['target']:<12} {ln['tuning']:<10} {ahed:>7} {ln['n_common']:>6} {ln['n_only_real']:>6} "
+                f"{ln['target']:<12} {ln['tuning']:<10} {ahed:>9} {ln['n_common']:>6} {ln['n_only_real']:>6} "
                 f"{ln['n_only_synthetic']:>6} {cd:>8}"
             )
-        mean = "-" if table["ahed_mean"] is None else f"{table['ahed_mean']:.4f}"
-        typer.echo(f"AHED mean ({hellinger_form} HED): {mean}")
+        mean = "undefined" if table["ahed_mean"] is None else f"{table['ahed_mean']:.4f}"
+        n_all = len(table["targets"])
+        typer.echo(f"AHED mean ({hellinger_form} HED) over the {table['ahed_n']} of {n_all} target lines where it is defined: {mean}")
         for path in result.track_files:
             typer.echo(f"wrote {path}")
         if json_out is not None:

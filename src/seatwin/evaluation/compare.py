@@ -8,9 +8,10 @@ target, HED and COVDIFF (5.31) of their Gaussians are computed. Conventions, all
 * AHED averages HED over the *common* instants (the thesis's choice: "only considering the
   occasions where there are common ground between the datasets").
 * ``both_missing`` — instants (inside the truth's span) where neither dataset has the target:
-  ``"never"`` (default, thesis scenario 7): skipped, except that a target neither dataset
-  ever tracked gets AHED 0 ("full agreement"); ``"zero"``: each such instant counts as HED 0
-  in the average; ``"skip"``: always skipped (AHED undefined without common instants).
+  ``"skip"`` (default): always skipped, so a target without common instants has AHED
+  *undefined* (None) and is left out of every mean, whose target count is stated;
+  ``"never"`` (the thesis's scenario 7): skipped, except that a target neither dataset ever
+  tracked gets AHED 0 ("full agreement"); ``"zero"``: each such instant counts as HED 0.
 * AHED cannot see track loss, so the instants where only one dataset has the target are
   reported beside it (counts and the fraction of the instants where either has it).
 """
@@ -44,7 +45,7 @@ class CompareOptions:
     confirmed_only: bool = True
     time_tolerance: float = DEFAULT_TIME_TOLERANCE_S
     form: HellingerForm = "standard"
-    both_missing: BothMissing = "never"
+    both_missing: BothMissing = "skip"
     confidence: float = 0.95
 
     def __post_init__(self) -> None:
@@ -270,18 +271,25 @@ def compare(
 
 
 def comparison_table(comparisons: list[Comparison]) -> dict:
-    """The JSON of ``seatwin compare``: per (target, tuning) lines, the mean AHED overall and per tuning."""
+    """The JSON of ``seatwin compare``: per (target, tuning) lines, the mean AHED overall and per tuning.
+
+    Means are over the targets whose AHED is defined; ``ahed_n`` / ``ahed_n_by_tuning`` say how many
+    (of ``len(targets)``) that is — an undefined AHED is never counted as agreement."""
     lines = [t.to_dict() for c in comparisons for t in c.targets]
     values = [ln["ahed"] for ln in lines if ln["ahed"] is not None]
     by_tuning: dict[str, float | None] = {}
+    n_by_tuning: dict[str, int] = {}
     for c in comparisons:
         v = [t.ahed for t in c.targets if t.ahed is not None]
         by_tuning[c.tuning] = float(np.mean(v)) if v else None
+        n_by_tuning[c.tuning] = len(v)
     opts = comparisons[0].options if comparisons else CompareOptions()
     return {
         "targets": lines,
         "ahed_mean": float(np.mean(values)) if values else None,
+        "ahed_n": len(values),
         "ahed_mean_by_tuning": by_tuning,
+        "ahed_n_by_tuning": n_by_tuning,
         "conventions": {
             "hellinger_form": opts.form,
             "both_missing": opts.both_missing,

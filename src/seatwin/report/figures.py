@@ -208,7 +208,11 @@ def ahed_figure(rows: list[dict], title: str) -> bytes:
         for g in groups:
             v = next((r["ahed"] for r in rows if (r["scenario"], r["target"]) == g and r["tuning"] == tun), None)
             vals.append(np.nan if v is None else v)
-        ax.bar(np.arange(len(groups)) + (j - (len(tunings) - 1) / 2) * width, vals, width, label=tun or "(untitled)")
+        x = np.arange(len(groups)) + (j - (len(tunings) - 1) / 2) * width
+        ax.bar(x, vals, width, label=tun or "(untitled)")
+        for xi, v in zip(x, vals):
+            if np.isnan(v):  # undefined: no common instant — shown as such, never as a zero bar
+                ax.text(xi, 0.02, "undefined", rotation=90, ha="center", va="bottom", fontsize=7, color="0.4")
     ax.set_xticks(np.arange(len(groups)), [f"{s}\n{t}" for s, t in groups], fontsize=8)
     ax.set_ylim(0, 1)
     ax.set_ylabel("AHED (5.34)")

@@ -95,8 +95,8 @@ def _ahed_section(results: list[ScenarioResult]) -> str:
             _f(r["scenario"]),
             _f(r["target"]),
             _f(r["tuning"] or "–"),
-            _f(r["ahed"]),
-            _f(r[f"ahed_{other}"]),
+            "undefined" if r["ahed"] is None else _f(r["ahed"]),
+            "undefined" if r[f"ahed_{other}"] is None else _f(r[f"ahed_{other}"]),
             _f(r["n_common"]),
             _f(r["n_only_real"]),
             _f(r["n_only_synthetic"]),
@@ -108,9 +108,11 @@ def _ahed_section(results: list[ScenarioResult]) -> str:
     ]
     tunings = sorted({r["tuning"] for r in rows})
     for tun in tunings + [None]:
-        vals = [r["ahed"] for r in rows if (tun is None or r["tuning"] == tun) and r["ahed"] is not None]
+        sel = [r for r in rows if tun is None or r["tuning"] == tun]
+        vals = [r["ahed"] for r in sel if r["ahed"] is not None]
         label = "Average, all tunings" if tun is None else f"Average, tuning {tun or '–'}"
-        table.append([label, "", "", _f(float(np.mean(vals)) if vals else None)] + [""] * 7)
+        label += f" (n = {len(vals)} of {len(sel)} defined)"
+        table.append([label, "", "", "undefined" if not vals else _f(float(np.mean(vals)))] + [""] * 7)
     header = [
         "scenario",
         "target",
@@ -130,7 +132,8 @@ def _ahed_section(results: list[ScenarioResult]) -> str:
         + _img(fig, "AHED bar chart")
         + '<p class="note">AHED averages HED over the instants where both datasets have the target; it cannot see '
         'track loss, so the instants where only one dataset has it are counted beside it ("only one": their '
-        "share of the instants where either has it). “–”: undefined (no common instant).</p>"
+        "share of the instants where either has it). AHED is undefined for a target without a common instant; "
+        "averages leave it out and state over how many targets they are taken.</p>"
     )
 
 
