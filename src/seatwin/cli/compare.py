@@ -148,7 +148,9 @@ def register(app: typer.Typer) -> None:
             )
         mean = "undefined" if table["ahed_mean"] is None else f"{table['ahed_mean']:.4f}"
         n_all = len(table["targets"])
-        typer.echo(f"AHED mean ({hellinger_form} HED) over the {table['ahed_n']} of {n_all} target lines where it is defined: {mean}")
+        typer.echo(
+            f"AHED mean ({hellinger_form} HED) over the {table['ahed_n']} of {n_all} target lines where it is defined: {mean}"
+        )
         for path in result.track_files:
             typer.echo(f"wrote {path}")
         if json_out is not None:

@@ -70,6 +70,38 @@ def comparison_pairs(
     return [(r, s, None, label) for r, s, label in zip(real, synthetic, labels, strict=True)]
 
 
+def _manifest(spec: str | Path) -> dict[str, Any] | None:
+    from seatwin.recording.manifest import read_manifest
+
+    path = Path(spec)
+    return read_manifest(path) if path.is_dir() else None
+
+
+def scenario_name(truth: str | Path) -> str:
+    """The scenario's own name: from a recording's manifest, a scenario file or a built-in name."""
+    manifest = _manifest(truth)
+    name = ((manifest or {}).get("metadata") or {}).get("scenario") if manifest else None
+    if name:
+        return str(name)
+    if not Path(truth).exists():
+        return str(truth)  # a built-in scenario's name
+    return Path(truth).stem
+
+
+def describe_dataset(spec: str | Path) -> str:
+    """What a dataset is, for the report: a track file, an imported real recording, or one seatwin simulated."""
+    if is_track_file(spec):
+        return f"track file {Path(spec).name}"
+    manifest = _manifest(spec)
+    settings = ((manifest or {}).get("metadata") or {}).get("settings")
+    if settings:
+        sensors = ", ".join(settings.get("sensors", []))
+        extra = [f"{k} {settings[k]}" for k in ("lidar_mode", "range_noise", "ray_drop") if settings.get(k) is not None]
+        extra += [k for k in ("dissipation",) if settings.get(k)]
+        return f"simulated by seatwin ({sensors}; {', '.join(extra)}; seed {manifest.get('seed')})"
+    return f"recording {Path(spec).name}"
+
+
 @dataclass
 class CompareResult:
     """The comparisons (one per tuning or pair), their table, and what was written."""
@@ -156,13 +188,17 @@ def compare_runs(
         clouds = (
             [] if clouds_at is None else [_clouds(real[0], synthetic[0], clouds_at, clouds_sensor, truth_set, clouds_relative)]
         )
+        notes = [f"“Real” dataset: {describe_dataset(r)}. “Synthetic” dataset: {describe_dataset(s)}." for r, s, _, _ in pairs]
+        if any(describe_dataset(r).startswith("simulated") for r, *_ in pairs):
+            notes.append("The “real” side here is itself simulated: this compares two sensor models, not reality.")
         result.report = write_comparison_report(
             report_dir,
             comparisons,
             truth_set,
-            title=f"seatwin compare — {Path(truth).name}",
-            scenario=Path(truth).stem,
+            title=f"seatwin compare — {scenario_name(truth)}",
+            scenario=scenario_name(truth),
             mask=load_mask(report_map),
             clouds=clouds,
+            notes=notes,
         )
     return result

@@ -69,8 +69,9 @@ def hellinger_figure(series: ComparisonSeries, title: str) -> bytes:
                 color="orange",
                 alpha=0.15,
                 step="mid",
-                label="only one dataset",
+                label="only one dataset has a track",
             )
+    ax[0].legend(loc="best", fontsize=8)  # again, now with the shaded band's entry
     fig.suptitle(title)
     return to_png(fig)
 

@@ -59,6 +59,8 @@ class ScenarioResult:
     comparisons: list[Comparison]
     truth: TruthSet
     clouds: list[Clouds] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    """What the compared datasets are (e.g. that the "real" side is itself simulated)."""
 
 
 def _img(png: bytes, alt: str) -> str:
@@ -116,7 +118,7 @@ def _ahed_section(results: list[ScenarioResult]) -> str:
     header = [
         "scenario",
         "target",
-        "tuning",
+        "tracker tuning",
         f"AHED ({form})",
         f"AHED ({other})",
         "common",
@@ -158,7 +160,7 @@ def _anees_table(comp: Comparison, target: str) -> str:
 
 
 def _target_section(result: ScenarioResult, comp: Comparison, target: str, mask) -> str:  # noqa: ANN001
-    label = f"{result.name} — {target}" + (f" — tuning {comp.tuning}" if comp.tuning else "")
+    label = f"{result.name} — {target}" + (f" — tracker tuning “{comp.tuning}”" if comp.tuning else "")
     line = next(t for t in comp.targets if t.target == target)
     parts = [
         f"<h3>{html.escape(label)}</h3>",
@@ -198,6 +200,7 @@ def render_report(results: list[ScenarioResult], title: str = "seatwin compariso
     ]
     for res in results:
         body.append(f"<h2>Scenario {html.escape(res.name)}</h2>")
+        body.extend(f'<p class="note">{html.escape(n)}</p>' for n in res.notes)
         for comp in res.comparisons:
             for target in res.truth.names:
                 body.append(_target_section(res, comp, target, mask))
@@ -245,8 +248,9 @@ def write_comparison_report(
     truth: TruthSet,
     title: str = "seatwin comparison report",
     scenario: str = "scenario",
-    mask=None,  # noqa: ANN001
+    mask: WaterMask | None = None,
     clouds: list[Clouds] | None = None,
+    notes: list[str] | None = None,
 ) -> Path:
-    """The report of one scenario compared under one or more tunings."""
-    return write_report(out_dir, [ScenarioResult(scenario, comparisons, truth, clouds or [])], title, mask)
+    """The report of one scenario compared under one or more tunings; ``notes`` say what the datasets are."""
+    return write_report(out_dir, [ScenarioResult(scenario, comparisons, truth, clouds or [], notes or [])], title, mask)
