@@ -51,8 +51,11 @@ def register(app: typer.Typer) -> None:
             help="Give the tracker (on both datasets) the fitted bearing bias as its radar calibration (needs --fit-on).",
         ),
         html: bool = typer.Option(True, "--html/--no-html", help="Also write the HTML report (index.html)."),
+        progress: bool = typer.Option(
+            True, "--progress/--no-progress", help="Progress bar (a line every 10 s when not a terminal)."
+        ),
     ) -> None:
-        from seatwin.cli.output import split_list
+        from seatwin.cli.output import progress_counter, split_list
         from seatwin.fidelity import FidelityOptions, run_fidelity, write_fidelity
         from seatwin.settings import validated
 
@@ -71,7 +74,16 @@ def register(app: typer.Typer) -> None:
                 "calibrate_bias": calibrate_bias,
             },
         )
-        result = run_fidelity(str(mat), opts)
+        n_steps = opts.seeds * (1 if opts.fit_on == "none" else 2)
+        with progress_counter("fidelity (seeds × models)", progress, min_total=1) as advance:
+            done = 0
+
+            def step(_what: str) -> None:
+                nonlocal done
+                done += 1
+                advance(done, n_steps)
+
+            result = run_fidelity(str(mat), opts, step=step)
         paths = write_fidelity(out, result, html=html)
 
         def num(x: float | None) -> str:

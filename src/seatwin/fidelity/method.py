@@ -16,6 +16,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -209,8 +210,11 @@ def evaluate_model(
     tuning: TrackerConfig,
     scene: Scene | None = None,
     label: str = "",
+    step: Callable[[str], None] | None = None,
 ) -> ModelResult:
-    """Simulate ``opts.seeds`` synthetic recordings with radar ``config``; AHED per agent in ``window``."""
+    """Simulate ``opts.seeds`` synthetic recordings with radar ``config``; AHED per agent in ``window``.
+
+    ``step(description)`` is called after each seed (for progress)."""
     from seatwin.evaluation import CompareOptions, compare
     from seatwin.sensors.radar.model import RadarModel
 
@@ -238,6 +242,8 @@ def evaluate_model(
                 result.comparisons[agent] = comp
             off_target[agent].append(off_target_tracks(tr, data, window))
             runs[agent].append(window_stats(comp.series[TARGET], window, seed))
+        if step is not None:
+            step(f"model {label}, seed {seed}")
     for agent in opts.agents:
         floor = floor_stats(synth_tracks[agent], opts.seed0, truth, window, opts.tuning)
         result.agents[agent] = _agent_result(
@@ -252,8 +258,12 @@ def _nanmean(parts: list[NDArray[np.float64]]) -> float | None:
     return float(np.mean(x)) if len(x) else None
 
 
-def run_fidelity(path: str, options: FidelityOptions | None = None, **changes: object) -> FidelityResult:
-    """The whole method on ``joyride.mat`` with ``options`` (default :class:`FidelityOptions`, with field ``changes``)."""
+def run_fidelity(
+    path: str, options: FidelityOptions | None = None, *, step: Callable[[str], None] | None = None, **changes: object
+) -> FidelityResult:
+    """The whole method on ``joyride.mat`` with ``options`` (default :class:`FidelityOptions`, with field ``changes``).
+
+    ``step(description)`` is called after each simulated seed of each model (for progress)."""
     from seatwin.fidelity.joyride import load_joyride
     from seatwin.sensors.radar.config import RadarConfig, load_radar_config
     from seatwin.sensors.radar.fit import fit_radar
@@ -306,7 +316,8 @@ def run_fidelity(path: str, options: FidelityOptions | None = None, **changes: o
         },
         radar_fit=fit_report,
         models={
-            label: evaluate_model(data, cfg, opts, window, real_tracks, tuning, scene, label) for label, cfg in models.items()
+            label: evaluate_model(data, cfg, opts, window, real_tracks, tuning, scene, label, step)
+            for label, cfg in models.items()
         },
         primary_model="fitted" if "fitted" in models else "default",
         primary_agent=opts.agents[0],

@@ -2,7 +2,8 @@
 
 :func:`frames` is the loop: it yields each sensor's frames in time order (ties in the order the
 sensors were given), each computed at its own time (``sensor.capture``). :func:`simulate` records
-them into a new recording (``sensor.record``); in-memory users (the fidelity method's replica)
+them into a new recording (``sensor.record``) through :class:`Stepper`, which a lock-step server
+(``seatwin serve``) advances step by step instead; in-memory users (the fidelity method's replica)
 iterate :func:`frames` directly. Random draws are keyed by (seed, sensor, frame), so a run is
 bit-identical whatever else runs. Ctrl-C stops cleanly: the bag is closed, readable, and the
 manifest says ``completed: false``.
@@ -11,6 +12,7 @@ manifest says ``completed: false``.
 from __future__ import annotations
 
 import heapq
+import sys
 import time as _time
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
@@ -53,6 +55,60 @@ def frames(sensors: Sequence[SimSensor], t0: float, t1: float) -> Iterator[tuple
         yield t, i, k, sensors[i].capture(t, k)
 
 
+class Stepper:
+    """The loop advanced in increments: :meth:`advance_to` runs every frame not yet run before ``t``.
+
+    :func:`simulate` advances it once to the end; a lock-step server (``seatwin serve``) advances it
+    as poses arrive. Frame ``k`` of a sensor is always the k-th of ``sensor.frame_times(t0, t)``
+    (times relative to the run's start ``t0``), so any sequence of increments runs the same frames,
+    with the same indices and in the same order, as one call to the end.
+    """
+
+    def __init__(
+        self,
+        sensors: Sequence[SimSensor],
+        writer: Any,
+        t0: float,
+        *,
+        on_frame: Callable[[SimSensor, float, int, Any], None] | None = None,
+    ):
+        self.sensors, self.writer, self.t0, self.on_frame = list(sensors), writer, float(t0), on_frame
+        self.counts = {s.name: 0 for s in self.sensors}
+        self.done_t = self.t0
+        """Time of the last frame run (``t0`` before any)."""
+        self.horizon = self.t0
+        """Every frame before this time has run."""
+        self._next = [0] * len(self.sensors)
+        writer.write_static_transforms(self.t0, [m for s in self.sensors for m in s.static_transforms(writer.topics)])
+
+    def advance_to(self, t1: float, advance: Callable[[float, float], None] | None = None, wall0: float = 0.0) -> int:
+        """Run (capture, record, ``on_frame``) every frame in [horizon, t1) in time order; return how many.
+
+        ``advance(simulated_s, wall_s)`` is called after each frame (progress).
+        """
+        if t1 <= self.horizon:
+            return 0
+        events = []
+        for i, s in enumerate(self.sensors):
+            times = s.frame_times(self.t0, t1)
+            events.extend((float(times[k]), i, k) for k in range(self._next[i], len(times)))
+            self._next[i] = max(self._next[i], len(times))
+        heapq.heapify(events)
+        n = len(events)
+        while events:
+            t, i, k = heapq.heappop(events)
+            data = self.sensors[i].capture(t, k)
+            self.sensors[i].record(self.writer, t, data)
+            if self.on_frame is not None:
+                self.on_frame(self.sensors[i], t, k, data)
+            self.counts[self.sensors[i].name] += 1
+            self.done_t = t
+            if advance is not None:
+                advance(t - self.t0, _time.perf_counter() - wall0)
+        self.horizon = float(t1)
+        return n
+
+
 def simulate(
     sensors: Sequence[SimSensor],
     run_dir: str | Path,
@@ -72,23 +128,16 @@ def simulate(
     """
     from seatwin.recording import RecordingWriter
 
-    counts = {s.name: 0 for s in sensors}
     wall0 = _time.perf_counter()
-    done_t = t0
     completed = False
     writer = RecordingWriter(
         run_dir, fmt, topics=topics, sensors={s.name: s.parameters() for s in sensors}, **(writer_kwargs or {})
     )
+    stepper = None
     try:
-        writer.write_static_transforms(t0, [m for s in sensors for m in s.static_transforms(writer.topics)])
+        stepper = Stepper(sensors, writer, t0, on_frame=on_frame)
         with _progress(progress, t1 - t0) as advance:
-            for t, i, k, data in frames(sensors, t0, t1):
-                sensors[i].record(writer, t, data)
-                if on_frame is not None:
-                    on_frame(sensors[i], t, k, data)
-                counts[sensors[i].name] += 1
-                done_t = t
-                advance(t - t0, _time.perf_counter() - wall0)
+            stepper.advance_to(t1, advance, wall0)
         completed = True
     except KeyboardInterrupt:
         writer.close(completed=False, error="interrupted (Ctrl-C)")
@@ -99,6 +148,8 @@ def simulate(
         writer.close(completed=True)
     wall = _time.perf_counter() - wall0
     rec_s = writer.timing.get("total_s", writer.timing["serialize_s"] + writer.timing["write_s"])
+    done_t = stepper.done_t if stepper is not None else t0
+    counts = stepper.counts if stepper is not None else {s.name: 0 for s in sensors}
     sim_s = (t1 - t0) if completed else max(0.0, done_t - t0)
     return SimulationResult(Path(run_dir), completed, sim_s, wall, counts, rec_s)
 
@@ -115,6 +166,20 @@ class _progress:
             return self.enabled
         if not self.enabled:
             return lambda sim_s, wall_s: None
+        if not sys.stderr.isatty():  # a pipe or a log: a line every 10 s of wall time, no bar
+            last = [0.0]
+
+            def log(sim_s: float, wall_s: float) -> None:
+                if wall_s - last[0] >= 10.0:
+                    last[0] = wall_s
+                    rtf = sim_s / wall_s if wall_s > 0 else 0.0
+                    print(
+                        f"simulating: {sim_s:.1f} / {self.total:.1f} s simulated, ×{rtf:.2f} real time",
+                        file=sys.stderr,
+                        flush=True,
+                    )
+
+            return log
         from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
         self._bar = Progress(
