@@ -92,3 +92,29 @@ def test_radar_frames_equal_recorded_or_not(recording: Path, tmp_path: Path):
     assert sum(len(s.points) for s in scans) == len(rows)
     first = sorted(float(r["range_m"]) for r in rows if float(r["time"]) == float(rows[0]["time"]))
     np.testing.assert_allclose(sorted(scans[0].points["range"]), first, atol=1e-3)
+
+
+def test_start_offset_is_the_start_relative_to_the_scenario(tmp_path: Path):
+    from seatwin.recording import open_bag
+    from seatwin.scenario.builtin import builtin_scenario
+
+    sc = builtin_scenario("ferry_crossing")
+    a = simulate_run(sc, tmp_path / "a", start_offset=30.0, duration=0.5, progress=False)
+    b = simulate_run(sc, tmp_path / "b", start=sc.start + 30.0, duration=0.5, progress=False)
+    assert a.frames == b.frames
+    with open_bag(tmp_path / "a") as ra, open_bag(tmp_path / "b") as rb:
+        assert [bytes(m[3]) for m in ra.raw_messages()] == [bytes(m[3]) for m in rb.raw_messages()]
+    with pytest.raises(ParameterError) as err:
+        simulate_run(sc, tmp_path / "c", start=sc.start, start_offset=1.0, progress=False)
+    assert err.value.param == "start_offset"
+
+
+def test_lidar_snapshot_speaks_the_shared_vocabulary(tmp_path: Path, capsys):
+    """--offset/--out/--lidar-mode/--ray-drop as everywhere else; the old spellings still work."""
+    new = ["--offset", "20", "--out", str(tmp_path / "a.png"), "--lidar-mode", "raycast", "--ray-drop", "0.5"]
+    old = ["--time", "20", "--output", str(tmp_path / "b.png"), "--range-model", "raycast", "--drop", "0.5"]
+    assert run(["lidar", "snapshot", "ferry_crossing", *new]) == 0
+    assert run(["lidar", "snapshot", "ferry_crossing", *old]) == 0
+    assert (tmp_path / "a.png").read_bytes() == (tmp_path / "b.png").read_bytes()
+    assert run(["lidar", "snapshot", "ferry_crossing", "--out", str(tmp_path / "c.png"), "--ray-drop", "2"]) == 2
+    assert "--ray-drop" in capsys.readouterr().err

@@ -9,12 +9,14 @@ from __future__ import annotations
 
 FLAG_OF: dict[str, str] = {
     "fmt": "--format",
-    "start_offset": "--start",
+    "start_offset": "--offset",
     "harbour_spec": "--harbour",
     "map_spec": "--map",
     "merge_distance": "--radar-merge",
     "radar_kind": "--radar-model",
     "eps": "--cluster-eps",
+    "drop_probability": "--ray-drop",
+    "preset": "--lidar-preset",
     "vessels": "--vessel",
     "rate_hz": "--rate",
     "eps_threshold_m": "--eps-threshold",

@@ -14,29 +14,40 @@ def register(app: typer.Typer) -> None:
     @lidar_app.command("snapshot")
     def snapshot(
         scenario: str = typer.Argument(..., help="A built-in scenario name, a scenario .yaml or a Gemini .csv."),
-        time: float = typer.Option(0.0, "--time", "-t", help="Start of the sweep, seconds after the scenario's start."),
-        output: Path = typer.Option(..., "--output", "-o", help="PNG file to write."),
-        preset: str = typer.Option("vlp16", "--preset", help="Lidar preset: vlp16 (1800 columns) or vlp16-thesis (1024)."),
-        range_model: str = typer.Option("raycast", "--range-model", help="Range model: raycast (exact) or depthbuffer."),
-        drop: float = typer.Option(None, "--drop", help="Ray-drop probability (default: the preset's, 0.8 as in the thesis)."),
+        offset: float = typer.Option(
+            0.0, "--offset", "--time", "-t", help="Start of the sweep, seconds after the scenario's start."
+        ),
+        out: Path = typer.Option(None, "--out", "-o", help="PNG file to write."),
+        output: Path = typer.Option(None, "--output", hidden=True),
+        preset: str = typer.Option(
+            "vlp16", "--lidar-preset", "--preset", help="Lidar preset: vlp16 (1800 columns) or vlp16-thesis (1024)."
+        ),
+        lidar_mode: str = typer.Option(
+            "raycast", "--lidar-mode", "--range-model", help="Lidar range model: raycast (exact) or depthbuffer."
+        ),
+        ray_drop: float = typer.Option(
+            None, "--ray-drop", "--drop", help="Ray-drop probability (default: the preset's, 0.8 as in the thesis)."
+        ),
         extent: float = typer.Option(110.0, "--extent", help="Half-size of the plotted square around the ownship, in metres."),
         harbour: str = typer.Option(
             None, "--harbour", help="Override the scenario's harbour: 'default', 'none' or a land raster .bin/.yaml."
         ),
     ) -> None:
         """One lidar sweep seen from above over the harbour, coloured by intensity, with the vessels' outlines."""
-        from seatwin.errors import InputError
+        from seatwin.errors import InputError, ParameterError
         from seatwin.scenario.load import load_scenario
         from seatwin.sensors.lidar import lidar_for_scenario, sweep_to_world
         from seatwin.sensors.lidar_config import lidar_preset
         from seatwin.sensors.plot import plot_sweep_top_view
         from seatwin.world.scene import Scene
 
+        time, range_model, drop = offset, lidar_mode, ray_drop
+        output = out or output
+        if output is None:
+            raise ParameterError("out", "give the PNG file to write (--out FILE.png)")
         sc = load_scenario(scenario)
         cfg = lidar_preset(preset)
         if drop is not None:
-            if not 0.0 <= drop <= 1.0:
-                raise InputError("--drop", f"must be a probability in [0, 1], got {drop}")
             cfg = cfg.with_(drop_probability=drop)
         if extent <= 0:
             raise InputError("--extent", f"must be positive, got {extent}")
@@ -44,8 +55,8 @@ def register(app: typer.Typer) -> None:
             raise InputError(sc.source, "the scenario has no ownship to carry the lidar")
         start = sc.start + time
         if not (sc.start <= start <= sc.end - cfg.period):
-            raise InputError(
-                "--time", f"{time} s is outside the scenario: a sweep must start within 0 … {sc.duration - cfg.period:.1f} s"
+            raise ParameterError(
+                "offset", f"{time} s is outside the scenario: a sweep must start within 0 … {sc.duration - cfg.period:.1f} s"
             )
         frame = int(round(time * cfg.rate_hz))
         scene = Scene.from_scenario(sc, harbour=harbour)

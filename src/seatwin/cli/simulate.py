@@ -29,6 +29,12 @@ def register(app: typer.Typer) -> None:
         out: Path = typer.Option(..., "--out", help="New run directory to record into."),
         duration: float | None = typer.Option(None, "--duration", help="Simulated seconds (default: to the scenario's end)."),
         start: float | None = typer.Option(None, "--start", help="POSIX start time (default: the scenario's start)."),
+        offset: float | None = typer.Option(
+            None, "--offset", help="Start this many seconds after the scenario's start (instead of --start)."
+        ),
+        harbour: str | None = typer.Option(
+            None, "--harbour", help="Harbour instead of the scenario's own: 'default', 'none' or a land raster .bin/.yaml."
+        ),
         seed: int | None = typer.Option(None, "--seed", help="Seed of every random draw (default: the scenario's)."),
         lidar_mode: LidarMode = typer.Option(LidarMode.raycast, "--lidar-mode", help="Lidar range model."),
         lidar_preset: str = typer.Option("vlp16", "--lidar-preset", help="vlp16 (1800 columns) or vlp16-thesis (1024)."),
@@ -56,7 +62,9 @@ def register(app: typer.Typer) -> None:
             scenario,
             out,
             start=start,
+            start_offset=offset,
             duration=duration,
+            harbour=harbour,
             date=_date(date),
             progress=not quiet,
             sensors=split_list(sensors, "sensors"),

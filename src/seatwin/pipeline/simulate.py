@@ -18,16 +18,24 @@ def simulate_run(
     settings: SimulationSettings | None = None,
     *,
     start: float | None = None,
+    start_offset: float | None = None,
     duration: float | None = None,
     date: dt.date | None = None,
     progress: bool | Callable[[float, float], None] = True,
     **changes: Any,
 ) -> SimulationResult:
     """Simulate ``scenario`` (built-in name, .yaml, Gemini .csv — ``date`` for TimeOfDay CSVs — or a
-    :class:`Scenario`) into the new run directory ``out``; ``changes`` override ``settings`` fields."""
+    :class:`Scenario`) into the new run directory ``out`` from POSIX ``start`` or ``start_offset`` seconds after the
+    scenario's start (default: its start); ``changes`` override ``settings`` fields."""
     from seatwin.scenario import Scenario
     from seatwin.scenario.load import load_scenario
     from seatwin.sim import simulate_scenario
 
+    if start is not None and start_offset is not None:
+        from seatwin.errors import ParameterError
+
+        raise ParameterError("start_offset", "give a start time or an offset after the scenario's start, not both")
     sc = scenario if isinstance(scenario, Scenario) else load_scenario(str(scenario), date=date)
+    if start_offset is not None:
+        start = sc.start + float(start_offset)
     return simulate_scenario(sc, out, settings, start=start, duration=duration, progress=progress, **changes)

@@ -37,7 +37,7 @@ def scenario_sensors(scenario: Scenario, settings: SimulationSettings) -> list[S
     if scenario.ownship is None:
         raise InputError(scenario.source, "the scenario has no ownship to carry the sensors")
     scenario = seeded(scenario, settings)
-    scene = Scene.from_scenario(scenario)
+    scene = Scene.from_scenario(scenario, harbour=settings.harbour)
     sensors: list[SimSensor] = [GroundTruthSensor(scenario, settings.ground_truth_rate_hz)]
     if "lidar" in settings.sensors:
         config = lidar_preset(settings.lidar_preset)

@@ -42,6 +42,11 @@ class SimulationSettings(Settings):
         description="Lidar turned by this much more than its nominal mount while /tf_static records the nominal "
         "one (a miscalibrated extrinsic) [deg].",
     )
+    harbour: str | None = Field(
+        None,
+        description="Harbour to simulate in instead of the scenario's own: 'default', 'none' or a land raster "
+        "(.bin/.yaml, Ravnkloa base-map format).",
+    )
     radar_config: str | None = Field(None, description="Radar YAML (default: the built-in radar model).")
     radar_spokes: bool = Field(
         False,
