@@ -1,0 +1,48 @@
+"""The README's command table runs as written, in order (outputs under a temporary ``runs/``)."""
+
+from __future__ import annotations
+
+import re
+import shlex
+from pathlib import Path
+
+import pytest
+
+from seatwin.cli.main import run
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def readme_commands() -> list[str]:
+    """Every backticked ``seatwin …`` command in the README's "What you can do" table, in order."""
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    table = text[text.index("## What you can do") : text.index("## Use it as a library")]
+    cmds = []
+    for line in table.splitlines():
+        if line.startswith("|"):
+            last_cell = line.rstrip().rstrip("|").rsplit("|", 1)[-1]
+            cmds += [c for c in re.findall(r"`([^`]+)`", last_cell) if c.startswith("seatwin ")]
+    return cmds
+
+
+def test_the_table_is_found():
+    cmds = readme_commands()
+    assert len(cmds) >= 20 and cmds[0].startswith("seatwin groundtruth")
+    assert not [c for c in cmds if "…" in c or "[" in c], "README commands must be runnable as written"
+
+
+@pytest.mark.slow
+def test_readme_commands_run_as_written(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(ROOT)
+    shared = (ROOT.parent / "shared" / "data").is_dir()
+    skipped = []
+    for cmd in readme_commands():
+        if "../shared" in cmd and not shared:
+            skipped.append(cmd)
+            continue
+        argv = [a.replace("runs/", f"{tmp_path}/runs/") for a in shlex.split(cmd)[1:]]
+        code = run(argv)
+        err = capsys.readouterr().err
+        assert code == 0, f"{cmd}\n{err}"
+    if skipped and not shared:
+        pytest.skip(f"{len(skipped)} README commands need ../shared/data, which is absent")
