@@ -66,3 +66,22 @@ def test_anees_of_consistent_filter_falls_inside_bounds() -> None:
     e = rng.multivariate_normal(np.zeros(4), p, size=n)
     value = anees(nees(e, np.zeros(4), np.broadcast_to(p, (n, 4, 4))))
     assert anees_bounds(n).verdict(value) == "consistent"
+
+
+def test_false_tracks_are_those_never_a_targets_and_land_is_counted():
+    from seatwin.evaluation import evaluate
+
+    from .conftest import make_tracks, make_truth
+
+    class HalfPlane:  # water where east < 50
+        def is_water(self, n: float, e: float) -> bool:
+            return e < 50.0
+
+    rows = [(t, 1, t * 1.0, 0.0) for t in range(11)]  # on A
+    rows += [(t, 7, 500.0, 10.0 + 3 * t) for t in range(11)]  # in the water, away from everything, 3 m/s
+    rows += [(t, 9, -300.0, 80.0) for t in range(5)]  # on land
+    ev = evaluate(make_tracks(rows, scan_times=list(range(11))), make_truth(), mask=HalfPlane())
+    ft = ev.false_tracks
+    assert (ft.n_tracks, ft.n_instants, ft.n_on_land) == (2, 16, 1)
+    assert ft.max_speed_mps == 0.0  # make_tracks gives zero velocity
+    assert evaluate(make_tracks(rows, scan_times=list(range(11))), make_truth()).false_tracks.n_on_land is None

@@ -118,3 +118,16 @@ def test_lidar_snapshot_speaks_the_shared_vocabulary(tmp_path: Path, capsys):
     assert (tmp_path / "a.png").read_bytes() == (tmp_path / "b.png").read_bytes()
     assert run(["lidar", "snapshot", "ferry_crossing", "--out", str(tmp_path / "c.png"), "--ray-drop", "2"]) == 2
     assert "--ray-drop" in capsys.readouterr().err
+
+
+def test_simulated_runs_name_their_harbour_and_false_tracks_are_counted(recording: Path):
+    from seatwin.recording.manifest import read_manifest
+
+    assert read_manifest(recording)["metadata"]["tracking"]["map"] == "harbour"
+    res = compare_runs([recording], [recording], recording, tunings=("synthetic",))
+    ft = res.table["false_tracks"][0]
+    assert ft["real"] == ft["synthetic"] and ft["real"]["n_on_land"] is not None
+    ev = evaluate_run(track_recording(recording, tuning="synthetic").tracks, recording, map_spec="none")
+    assert ev.false_tracks is not None and ev.false_tracks.n_on_land == 0  # no mask: nothing is land
+    ev_all = evaluate_run(track_recording(recording, tuning="synthetic", map_spec="none").tracks, recording)
+    assert ev_all.false_tracks.n_tracks >= ft["real"]["n_tracks"]  # without the land mask: at least as many

@@ -151,6 +151,15 @@ def register(app: typer.Typer) -> None:
         typer.echo(
             f"AHED mean ({hellinger_form} HED) over the {table['ahed_n']} of {n_all} target lines where it is defined: {mean}"
         )
+        for ft in table["false_tracks"]:
+            for side in ("real", "synthetic"):
+                f = ft[side]
+                if f is not None:
+                    land = "" if f["n_on_land"] is None else f", {f['n_on_land']} on land"
+                    typer.echo(
+                        f"false tracks, {side} dataset{' (tuning ' + ft['tuning'] + ')' if ft['tuning'] else ''}: "
+                        f"{f['n_tracks']}{land}"
+                    )
         for path in result.track_files:
             typer.echo(f"wrote {path}")
         if json_out is not None:

@@ -50,6 +50,12 @@ def register(app: typer.Typer) -> None:
         confidence: float = typer.Option(
             0.95, "--confidence", metavar="P", help="Confidence of the two-sided ANEES bounds (5.28)."
         ),
+        map_spec: str | None = typer.Option(
+            None,
+            "--map",
+            metavar="harbour|none|RASTER",
+            help="Water mask to count false tracks on land (default: the recording's harbour, when --truth is a recording).",
+        ),
     ) -> None:
         import json
 
@@ -58,7 +64,7 @@ def register(app: typer.Typer) -> None:
 
         if json_out is not None:
             check_output_file(json_out, "json_out")
-        result = evaluate_run(tracks, truth, gate=gate, confirmed_only=not all_tracks, confidence=confidence)
+        result = evaluate_run(tracks, truth, gate=gate, confirmed_only=not all_tracks, confidence=confidence, map_spec=map_spec)
         typer.echo(
             f"{'target':<12} {'coverage':>8} {'first (UTC)':>14} {'last (UTC)':>14} {'switch':>6} {'RMSE':>8} {'RMSEpos':>8} "
             f"{'ANEES':>9} {'bounds':>15}  verdict"
@@ -70,6 +76,11 @@ def register(app: typer.Typer) -> None:
                 f"{s.track_switches:>6} {_fmt(s.rmse):>8} {_fmt(s.rmse_position):>8} {_fmt(s.anees):>9} {bounds:>15}  "
                 f"{s.anees_verdict}"
             )
+        ft = result.false_tracks
+        if ft is not None:
+            land = "" if ft.n_on_land is None else f", {ft.n_on_land} on land"
+            fastest = "" if ft.max_speed_mps is None else f"; fastest {ft.max_speed_mps:.1f} m/s"
+            typer.echo(f"false tracks (never a target's): {ft.n_tracks}{land}, {ft.n_instants} track-instants{fastest}")
         if json_out is not None:
             data = {
                 "tracks": str(tracks),

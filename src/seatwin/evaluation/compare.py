@@ -256,12 +256,18 @@ def compare_target(
 
 
 def compare(
-    real: Tracks, synthetic: Tracks, truth: TruthSet, tuning: str = "", options: CompareOptions | None = None
+    real: Tracks,
+    synthetic: Tracks,
+    truth: TruthSet,
+    tuning: str = "",
+    options: CompareOptions | None = None,
+    mask: object | None = None,
 ) -> Comparison:
-    """Compare a real and a synthetic tracker run against the same ground truth (thesis 5.2.1)."""
+    """Compare a real and a synthetic tracker run against the same ground truth (thesis 5.2.1); false tracks
+    on land are counted with the water ``mask`` when given."""
     options = options or CompareOptions()
-    ev_r = evaluate(real, truth, options.gate, options.confirmed_only, options.confidence)
-    ev_s = evaluate(synthetic, truth, options.gate, options.confirmed_only, options.confidence)
+    ev_r = evaluate(real, truth, options.gate, options.confirmed_only, options.confidence, mask)
+    ev_s = evaluate(synthetic, truth, options.gate, options.confirmed_only, options.confidence, mask)
     result = Comparison(tuning, options, ev_r, ev_s)
     for name in truth.names:
         series, line = compare_target(ev_r, ev_s, truth, name, tuning, options)
@@ -290,6 +296,14 @@ def comparison_table(comparisons: list[Comparison]) -> dict:
         "ahed_n": len(values),
         "ahed_mean_by_tuning": by_tuning,
         "ahed_n_by_tuning": n_by_tuning,
+        "false_tracks": [
+            {
+                "tuning": c.tuning,
+                "real": c.real.false_tracks and c.real.false_tracks.to_dict(),
+                "synthetic": c.synthetic.false_tracks and c.synthetic.false_tracks.to_dict(),
+            }
+            for c in comparisons
+        ],
         "conventions": {
             "hellinger_form": opts.form,
             "both_missing": opts.both_missing,

@@ -68,16 +68,35 @@ class TargetSummary:
 
 
 @dataclass
+class FalseTracks:
+    """Tracks never associated with any target: un-truthed vessels, persistent clutter, quay returns."""
+
+    n_tracks: int
+    """Distinct false tracks."""
+    n_instants: int
+    """Track-instants they occupy."""
+    n_on_land: int | None
+    """False tracks whose mean position lies on land (None without a water mask)."""
+    max_speed_mps: float | None
+    """Largest estimated speed of any false track (impossible speeds show quay-sliding tracks)."""
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+@dataclass
 class Evaluation:
     association: Association
     series: dict[str, TargetSeries]
     summaries: list[TargetSummary]
+    false_tracks: FalseTracks | None = None
 
     def to_dict(self) -> dict:
         return {
             "gate_m": self.association.gate,
             "n_instants": int(len(self.association.times)),
             "targets": [s.to_dict() for s in self.summaries],
+            "false_tracks": None if self.false_tracks is None else self.false_tracks.to_dict(),
         }
 
 
@@ -138,12 +157,35 @@ def summarise(series: TargetSeries, truth_defined: NDArray[np.bool_], confidence
     )
 
 
+def false_tracks(tracks: Tracks, assoc: Association, mask: object | None = None) -> FalseTracks:
+    """The tracks of ``tracks`` that ``assoc`` never gave to a target; on land per ``mask`` (``is_water(n, e)``)."""
+    used = {int(k) for k in assoc.track_id.ravel() if k >= 0}
+    false = ~np.isin(tracks.track_id, list(used)) if used else np.ones(len(tracks.track_id), bool)
+    false &= tracks.track_id >= 0
+    ids = np.unique(tracks.track_id[false])
+    on_land = None
+    if mask is not None:
+        on_land = 0
+        for k in ids:
+            m = false & (tracks.track_id == k)
+            n, e = tracks.state[m][:, 0].mean(), tracks.state[m][:, 2].mean()
+            on_land += int(not mask.is_water(float(n), float(e)))  # type: ignore[attr-defined]
+    speeds = np.hypot(tracks.state[false, 1], tracks.state[false, 3])
+    return FalseTracks(int(len(ids)), int(false.sum()), on_land, float(speeds.max()) if len(speeds) else None)
+
+
 def evaluate(
-    tracks: Tracks, truth: TruthSet, gate: float = DEFAULT_GATE_M, confirmed_only: bool = True, confidence: float = 0.95
+    tracks: Tracks,
+    truth: TruthSet,
+    gate: float = DEFAULT_GATE_M,
+    confirmed_only: bool = True,
+    confidence: float = 0.95,
+    mask: object | None = None,
 ) -> Evaluation:
-    """Associate ``tracks`` with ``truth`` and compute every target's metrics (thesis 5.1.4)."""
+    """Associate ``tracks`` with ``truth`` and compute every target's metrics (thesis 5.1.4), and the false
+    tracks (on land per the water ``mask``, when given)."""
     used = tracks.confirmed_only() if confirmed_only else tracks
     assoc = associate(used, truth, gate)
     series = {name: target_series(used, truth, assoc, name) for name in assoc.targets}
     summaries = [summarise(series[name], assoc.truth_defined[assoc.index(name)], confidence) for name in assoc.targets]
-    return Evaluation(assoc, series, summaries)
+    return Evaluation(assoc, series, summaries, false_tracks(used, assoc, mask))

@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from seatwin.errors import InputError, ParameterError
-from seatwin.pipeline.evaluate import check_overlap
+from seatwin.pipeline.evaluate import check_overlap, recording_mask
 from seatwin.pipeline.track import track_recording
 
 if TYPE_CHECKING:
@@ -162,6 +162,7 @@ def compare_runs(
         raise ParameterError("clouds_sensor", f"expected 'lidar' or 'radar', got {clouds_sensor!r}")
     pairs = comparison_pairs(real, synthetic, list(tunings))
     truth_set = load_truth(truth)
+    mask = recording_mask(truth)
     cache: dict[tuple[str, str | None], Tracks] = {}
     kept: list[Path] = []
 
@@ -179,7 +180,7 @@ def compare_runs(
         run_r, run_s = run_of(r, t, "real"), run_of(s, t, "synthetic")
         check_overlap(run_r, truth_set, r)
         check_overlap(run_s, truth_set, s)
-        comparisons.append(compare(run_r, run_s, truth_set, tuning=label, options=options))
+        comparisons.append(compare(run_r, run_s, truth_set, tuning=label, options=options, mask=mask))
     result = CompareResult(real, synthetic, str(truth), comparisons, comparison_table(comparisons), track_files=kept)
     if report_dir is not None:
         from seatwin.perception.map_mask import load_mask

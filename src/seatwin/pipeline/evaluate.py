@@ -27,6 +27,20 @@ def check_overlap(tracks: Tracks, truth: TruthSet, source: str) -> None:
         )
 
 
+def recording_mask(spec: str | Path | None) -> object | None:
+    """The water mask a recording's manifest names (``metadata.tracking.map``), else None."""
+    from seatwin.perception.map_mask import load_mask
+    from seatwin.recording.manifest import read_manifest
+
+    if spec is None or not Path(spec).is_dir():
+        return None
+    hint = (((read_manifest(Path(spec)) or {}).get("metadata") or {}).get("tracking") or {}).get("map")
+    if hint is None:
+        return None
+    text = str(hint)
+    return load_mask(text if text in ("harbour", "none") or Path(text).is_absolute() else str(Path(spec) / text))
+
+
 def evaluate_run(
     tracks: str | Path | Tracks,
     truth: str | Path | TruthSet,
@@ -34,8 +48,10 @@ def evaluate_run(
     gate: float = 10.0,
     confirmed_only: bool = True,
     confidence: float = 0.95,
+    map_spec: str | None = None,
 ) -> Evaluation:
-    """Per-target metrics of ``tracks`` (a track file or :class:`Tracks`) against ``truth`` (scenario, recording or set)."""
+    """Per-target metrics of ``tracks`` (a track file or :class:`Tracks`) against ``truth`` (scenario, recording or set),
+    and the false tracks — on land per ``map_spec`` ('harbour', 'none', a raster; default: the recording's own)."""
     from seatwin.evaluation import Tracks, evaluate, load_truth, read_tracks
 
     if not gate > 0:
@@ -45,4 +61,10 @@ def evaluate_run(
     run = tracks if isinstance(tracks, Tracks) else read_tracks(tracks)
     truth_set = truth if not isinstance(truth, str | Path) else load_truth(truth)
     check_overlap(run, truth_set, str(run.source))
-    return evaluate(run, truth_set, gate=gate, confirmed_only=confirmed_only, confidence=confidence)
+    if map_spec is not None:
+        from seatwin.perception.map_mask import load_mask
+
+        mask = load_mask(map_spec)
+    else:
+        mask = recording_mask(truth if isinstance(truth, str | Path) else None)
+    return evaluate(run, truth_set, gate=gate, confirmed_only=confirmed_only, confidence=confidence, mask=mask)

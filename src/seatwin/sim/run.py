@@ -60,7 +60,29 @@ def scenario_sensors(scenario: Scenario, settings: SimulationSettings) -> list[S
         sensors.append(
             RadarSensor(RadarModel(cfg, seed=scenario.seed), scene, scenario.ownship.name, with_spokes=settings.radar_spokes)
         )
+    if "camera" in settings.sensors:
+        from seatwin.sensors.camera.config import CameraConfig
+        from seatwin.sim.camera import CameraSensor
+
+        cam = CameraConfig(
+            hfov_deg=settings.camera_hfov_deg, distortion=settings.camera_distortion, labels=settings.camera_labels
+        )
+        sensors.append(CameraSensor(cam, scene, scenario.ownship.name))
     return sensors
+
+
+def water_mask_hint(scenario: Scenario, settings: SimulationSettings) -> str:
+    """The water mask ``seatwin track`` should use on this run: the harbour it was simulated in."""
+    spec = settings.harbour if settings.harbour is not None else scenario.environment.get("harbour", "default")
+    text = str(spec)
+    if text in ("default", "harbour"):
+        return "harbour"
+    if text == "none":
+        return "none"
+    path = Path(text)
+    if not path.is_absolute() and settings.harbour is None:
+        path = Path(scenario.source).parent / path  # a raster named in a scenario file is relative to it
+    return str(path.resolve())
 
 
 def simulate_scenario(
@@ -106,6 +128,12 @@ def simulate_scenario(
             "origin": scenario.origin,
             "seed": scenario.seed,
             "scenario_file": yaml_path,
-            "metadata": {"scenario": scenario.name, "start": t0, "end": t1, "settings": settings.model_dump(mode="json")},
+            "metadata": {
+                "scenario": scenario.name,
+                "start": t0,
+                "end": t1,
+                "settings": settings.model_dump(mode="json"),
+                "tracking": {"map": water_mask_hint(scenario, settings)},
+            },
         },
     )
