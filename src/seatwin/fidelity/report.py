@@ -206,8 +206,22 @@ def _html(out: Path, result: FidelityResult) -> Path:
     data = result.data
     truth = truth_of(data)
     results = []
+    fit = {
+        "none": "not fitted (the built-in radar model)",
+        "first-half": "fitted on the first half of the scans; every figure here is on the held-out second half",
+        "all": "fitted on all scans (for reference: no held-out data)",
+    }[result.fit_on]
+    agent_names = {"jipda": "JIPDA", "gnn": "GNN"}
     for label, m in result.models.items():
-        comps = [replace(c, tuning=f"{result.tuning} ({agent})") for agent, c in m.comparisons.items()]
+        comps = [
+            replace(c, tuning=f"{result.tuning}, agent {agent_names.get(agent, agent)}") for agent, c in m.comparisons.items()
+        ]
+        notes = [
+            f"“Real” dataset: {result.dataset} (joyride, real radar plots, GNSS truth). “Synthetic” dataset: its replica "
+            f"with the {label} radar model, seed {result.seed0}.",
+            f"Radar model: {fit if label == 'fitted' else 'the built-in default model (not fitted)'}. "
+            f"Each row names the tracking agent (JIPDA or GNN) and the tracker tuning.",
+        ]
         clouds = []
         if m.example_plots is not None:
             for k in np.linspace(0, len(data) - 1, 3).astype(int):
@@ -220,5 +234,5 @@ def _html(out: Path, result: FidelityResult) -> Path:
                         targets=[("target", float(data.target[k, 0]), float(data.target[k, 2]))],
                     )
                 )
-        results.append(ScenarioResult(f"joyride, {label} radar model (seed {result.seed0})", comps, truth, clouds))
+        results.append(ScenarioResult(f"joyride, {label} radar model (seed {result.seed0})", comps, truth, clouds, notes))
     return write_report(out, results, title="seatwin fidelity: joyride real versus synthetic radar")
