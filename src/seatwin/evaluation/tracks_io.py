@@ -14,7 +14,10 @@ scan time without a track row.
 from __future__ import annotations
 
 import csv
+import io
 import os
+import warnings
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -161,59 +164,74 @@ def read_tracks(path: str | os.PathLike[str]) -> Tracks:
     """Read a track file; an :class:`InputError` names the file, line and column of any bad value."""
     path = Path(path)
     try:
-        handle = path.open(newline="")
+        text = path.read_text(encoding="utf-8-sig")
     except OSError as exc:
         raise InputError(path, f"cannot open track file: {exc.strerror}") from None
+    except UnicodeDecodeError as exc:
+        raise InputError(path, f"not UTF-8 text ({exc.reason} at byte {exc.start}); expected a track file") from None
+    reader = csv.reader(io.StringIO(text, newline=""))
+    try:
+        return _read_rows(path, reader)
+    except csv.Error as exc:
+        raise InputError(path, f"malformed CSV: {exc}", where=f"line {reader.line_num}") from None
+
+
+def _read_rows(path: Path, reader: Iterator[list[str]]) -> Tracks:
     numeric: list[list[float]] = []
+    lines: list[int] = []
     ids: list[int] = []
     confirmed: list[bool] = []
     scans: list[float] = []
-    with handle:
-        reader = csv.reader(handle)
-        header = next(reader, None)
-        if header is None:
-            raise InputError(path, f"empty file, expected the header {','.join(COLUMNS)}")
-        header = [h.strip() for h in header]
-        missing = [c for c in COLUMNS if c not in header]
-        if missing:
-            raise InputError(path, f"missing column(s) {missing}; expected {','.join(COLUMNS)}", where="line 1")
-        col = {c: header.index(c) for c in COLUMNS}
-        value_cols = ["existence", *STATE_NAMES, *COV_COLUMNS]
-        for line, row in enumerate(reader, start=2):
-            if not row or all(not c.strip() for c in row):
-                continue
-            if len(row) < len(header):
-                raise InputError(path, f"expected {len(header)} fields, got {len(row)}", where=f"line {line}")
+    header = next(reader, None)
+    if header is None:
+        raise InputError(path, f"empty file, expected the header {','.join(COLUMNS)}")
+    header = [h.strip() for h in header]
+    missing = [c for c in COLUMNS if c not in header]
+    if missing:
+        raise InputError(path, f"missing column(s) {missing}; expected {','.join(COLUMNS)}", where="line 1")
+    col = {c: header.index(c) for c in COLUMNS}
+    value_cols = ["existence", *STATE_NAMES, *COV_COLUMNS]
+    for line, row in enumerate(reader, start=2):
+        if not row or all(not c.strip() for c in row):
+            continue
+        if len(row) < len(header):
+            raise InputError(path, f"expected {len(header)} fields, got {len(row)}", where=f"line {line}")
 
-            def number(name: str, row: list[str] = row, line: int = line) -> float:
-                return parse_finite(row[col[name]].strip(), path, name, line)
+        def number(name: str, row: list[str] = row, line: int = line) -> float:
+            return parse_finite(row[col[name]].strip(), path, name, line)
 
-            t = number("time")
-            tid_text = row[col["track_id"]].strip()
-            try:
-                tid = int(tid_text)
-            except ValueError:
-                raise InputError(path, f"expected an integer track_id, got {tid_text!r}", where=f"line {line}") from None
-            if tid == NO_TRACK:
-                filled = [c for c in value_cols + ["confirmed"] if row[col[c]].strip()]
-                if filled:
-                    raise InputError(
-                        path, f"a scan marker row (track_id {NO_TRACK}) must leave {filled[0]} empty", where=f"line {line}"
-                    )
-                scans.append(t)
-                continue
-            if tid < 0:
+        t = number("time")
+        tid_text = row[col["track_id"]].strip()
+        try:
+            tid = int(tid_text)
+        except ValueError:
+            raise InputError(path, f"expected an integer track_id, got {tid_text!r}", where=f"line {line}") from None
+        if tid == NO_TRACK:
+            filled = [c for c in value_cols + ["confirmed"] if row[col[c]].strip()]
+            if filled:
                 raise InputError(
-                    path, f"track_id must be >= 0 (or {NO_TRACK} for a scan marker), got {tid}", where=f"line {line}"
+                    path, f"a scan marker row (track_id {NO_TRACK}) must leave {filled[0]} empty", where=f"line {line}"
                 )
-            values = [t] + [number(c) for c in value_cols]
-            flag = row[col["confirmed"]].strip()
-            if flag not in ("0", "1"):
-                raise InputError(path, f"confirmed must be 0 or 1, got {flag!r}", where=f"line {line}")
-            numeric.append(values)
-            ids.append(tid)
-            confirmed.append(flag == "1")
+            scans.append(t)
+            continue
+        if tid < 0:
+            raise InputError(path, f"track_id must be >= 0 (or {NO_TRACK} for a scan marker), got {tid}", where=f"line {line}")
+        values = [t] + [number(c) for c in value_cols]
+        flag = row[col["confirmed"]].strip()
+        if flag not in ("0", "1"):
+            raise InputError(path, f"confirmed must be 0 or 1, got {flag!r}", where=f"line {line}")
+        numeric.append(values)
+        lines.append(line)
+        ids.append(tid)
+        confirmed.append(flag == "1")
     arr = np.asarray(numeric, dtype=float).reshape(-1, 2 + 4 + 16)
+    back = np.flatnonzero(np.diff(arr[:, 0]) < 0)
+    if back.size:  # kept, sorted by (time, track_id); a repeated (time, track_id) stays an error
+        warnings.warn(
+            f"{path}: track rows are not in time order (time {arr[back[0] + 1, 0]!r} after {arr[back[0], 0]!r}, "
+            f"line {lines[back[0] + 1]}); they are sorted by time",
+            stacklevel=3,
+        )
     return Tracks(
         time=arr[:, 0],
         track_id=np.asarray(ids, dtype=np.int64),

@@ -15,8 +15,12 @@ from __future__ import annotations
 
 import csv
 import datetime as dt
+import io
 import math
 import os
+import struct
+import zlib
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -46,6 +50,106 @@ class RadarDataset:
     source: str = ""
 
 
+JOYRIDE_VARIABLES = ("time", "measurements", "target", "telemetron")
+MAT_MAX_VARIABLE_BYTES = 256 * 2**20
+"""Largest decompressed variable :func:`check_mat5` accepts (joyride's largest is 7 kB)."""
+_MI_SIZES = {1: 1, 2: 1, 3: 2, 4: 2, 5: 4, 6: 4, 7: 4, 9: 8, 12: 8, 13: 8, 16: 1, 17: 2, 18: 4}
+"""MAT v5 data types (miINT8 … miUTF32) → item size [B]."""
+_NUMERIC_CLASSES = {4, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15}
+"""mxCHAR and the numeric array classes; 1 is mxCELL."""
+_MI_MATRIX, _MI_COMPRESSED = 14, 15
+
+
+def _mat_elements(buf: bytes, order: str, where: str, p: Path) -> Iterator[tuple[int, bytes]]:
+    """(data type, data) of the tagged elements filling ``buf``; every size is checked against ``buf``."""
+    i = 0
+    while i < len(buf):
+        if i + 8 > len(buf):
+            raise InputError(p, f"truncated element tag at byte {i}", where=where)
+        (tag,) = struct.unpack_from(order + "I", buf, i)
+        if tag >> 16:  # small data element: the size in the upper half, the data in the next 4 bytes
+            kind, n = tag & 0xFFFF, tag >> 16
+            if n > 4:
+                raise InputError(p, f"small data element of {n} bytes (at most 4)", where=where)
+            yield kind, buf[i + 4 : i + 4 + n]
+            i += 8
+            continue
+        kind, n = struct.unpack_from(order + "II", buf, i)
+        if n > len(buf) - i - 8:
+            raise InputError(p, f"element of {n} bytes at byte {i} exceeds its {len(buf) - i - 8} remaining bytes", where=where)
+        yield kind, buf[i + 8 : i + 8 + n]
+        i += 8 + n + (0 if kind == _MI_COMPRESSED else -n % 8)
+
+
+def _check_matrix(body: bytes, order: str, where: str, p: Path, full: bool, depth: int = 0) -> str:
+    """Check one miMATRIX element (its name returned); ``full``: its data as well, not only its header."""
+    if depth > 8:
+        raise InputError(p, "cell arrays nested deeper than 8", where=where)
+    parts = _mat_elements(body, order, where, p)
+    head = [next(parts, None) for _ in range(3)]
+    if None in head or [h[0] for h in head] != [6, 5, 1] or len(head[0][1]) != 8:  # type: ignore[index]
+        raise InputError(p, "array without array flags, dimensions and name", where=where)
+    flags = struct.unpack_from(order + "I", head[0][1])[0]  # type: ignore[index]
+    dims_raw = head[1][1]  # type: ignore[index]
+    if len(dims_raw) % 4 or len(dims_raw) < 8:
+        raise InputError(p, f"dimensions of {len(dims_raw)} bytes", where=where)
+    dims = struct.unpack(order + f"{len(dims_raw) // 4}i", dims_raw)
+    if min(dims) < 0 or math.prod(dims) > MAT_MAX_VARIABLE_BYTES:
+        raise InputError(p, f"impossible dimensions {dims}", where=where)
+    name = head[2][1].decode("ascii", errors="replace")  # type: ignore[index]
+    if not full:
+        return name
+    cls, count = flags & 0xFF, math.prod(dims)
+    rest = list(parts)
+    if cls == 1:  # cell: one array per element
+        if len(rest) != count or any(k != _MI_MATRIX for k, _ in rest):
+            raise InputError(p, f"cell array {dims} does not hold {count} arrays", where=where)
+        for j, (_, sub) in enumerate(rest):
+            _check_matrix(sub, order, f"{where}{{{j + 1}}}", p, True, depth + 1)
+    elif cls in _NUMERIC_CLASSES:
+        want = 2 if flags & 0x800 else 1
+        if len(rest) != want:
+            raise InputError(p, f"numeric array with {len(rest)} data parts, expected {want}", where=where)
+        for kind, data in rest:
+            size = _MI_SIZES.get(kind)
+            if size is None or len(data) != count * size:
+                raise InputError(p, f"array {dims} with {len(data)} bytes of data type {kind}", where=where)
+    else:
+        raise InputError(p, f"unsupported MATLAB array class {cls} (expected numeric or cell arrays)", where=where)
+    return name
+
+
+def check_mat5(p: Path, needed: tuple[str, ...]) -> None:
+    """Validate the structure of a MATLAB v5 file before scipy reads it: every element size fits its
+    parent, compressed variables inflate to at most :data:`MAT_MAX_VARIABLE_BYTES`, and the ``needed``
+    variables are numeric or cell arrays whose data match their dimensions. (scipy's reader trusts the
+    file's sizes and types; some corrupt files crash the interpreter.)"""
+    data = p.read_bytes()
+    if len(data) < 128 or data[126:128] not in (b"IM", b"MI"):
+        raise InputError(p, "not a MATLAB v5 .mat file (no v5 header)")
+    order = "<" if data[126:128] == b"IM" else ">"
+    body = data[128:]
+    for index, (kind, elem) in enumerate(_mat_elements(body, order, "header", p)):
+        where = f"variable {index + 1}"
+        if kind == _MI_COMPRESSED:
+            inflate = zlib.decompressobj()
+            try:
+                raw = inflate.decompress(elem, MAT_MAX_VARIABLE_BYTES + 1)
+            except zlib.error as exc:
+                raise InputError(p, f"corrupt compressed variable: {exc}", where=where) from None
+            if len(raw) > MAT_MAX_VARIABLE_BYTES or inflate.unconsumed_tail:
+                raise InputError(p, f"compressed variable inflates beyond {MAT_MAX_VARIABLE_BYTES} bytes", where=where)
+            inner = list(_mat_elements(raw, order, where, p))
+            if len(inner) != 1:
+                raise InputError(p, "compressed element does not hold one variable", where=where)
+            kind, elem = inner[0]
+        if kind != _MI_MATRIX:
+            raise InputError(p, f"top-level element of data type {kind}, expected an array", where=where)
+        name = _check_matrix(elem, order, where, p, full=False)
+        if name in needed:
+            _check_matrix(elem, order, f"variable {name!r}", p, full=True)
+
+
 def read_joyride(path: str | os.PathLike[str]) -> RadarDataset:
     """Read ``joyride.mat`` (see the module docstring); inf rows of a scan are dropped."""
     from scipy.io import loadmat
@@ -53,10 +157,12 @@ def read_joyride(path: str | os.PathLike[str]) -> RadarDataset:
     p = Path(path)
     if not p.is_file():
         raise InputError(p, "no such file")
+    check_mat5(p, JOYRIDE_VARIABLES)
     try:
-        d = loadmat(p)
+        d = loadmat(p, variable_names=list(JOYRIDE_VARIABLES))
     except Exception as exc:  # noqa: BLE001 - any parser failure becomes one line
-        raise InputError(p, f"not a MATLAB v5 file scipy can read: {type(exc).__name__}: {exc}") from None
+        text = " ".join(str(exc).split())[:300]
+        raise InputError(p, f"not a MATLAB v5 file scipy can read: {type(exc).__name__}: {text}") from None
     for key in ("time", "measurements", "target", "telemetron"):
         if key not in d:
             raise InputError(p, f"missing variable {key!r}; expected time, measurements, target, telemetron")
@@ -93,22 +199,17 @@ def read_ravnkloa_radar(path: str | os.PathLike[str]) -> RadarDataset:
         start = dt.datetime.strptime(p.stem, "%Y-%m-%d-%H-%M-%S").replace(tzinfo=dt.UTC).timestamp()
     except ValueError:
         raise InputError(p, "expected a file name YYYY-MM-DD-HH-MM-SS.csv (the recording start)") from None
-    rows: list[tuple[float, float, float]] = []
-    with p.open(newline="") as fh:
-        reader = csv.reader(fh)
-        header = next(reader, None)
-        if header is None or [h.strip() for h in header[:3]] != ["scan_time_s", "north_m", "east_m"]:
-            raise InputError(p, f"expected the header scan_time_s,north_m,east_m, got {header}", where="line 1")
-        for line_no, row in enumerate(reader, start=2):
-            if not row:
-                continue
-            try:
-                t, n, e = (float(v) for v in row[:3])
-            except ValueError:
-                raise InputError(p, f"expected three numbers, got {row}", where=f"line {line_no}") from None
-            if not all(math.isfinite(v) for v in (t, n, e)):
-                raise InputError(p, f"non-finite value in {row}", where=f"line {line_no}")
-            rows.append((t, n, e))
+    try:
+        text = p.read_text(encoding="utf-8-sig")
+    except OSError as exc:
+        raise InputError(p, f"cannot open: {exc.strerror}") from None
+    except UnicodeDecodeError as exc:
+        raise InputError(p, f"not UTF-8 text ({exc.reason} at byte {exc.start}); expected a radar CSV") from None
+    reader = csv.reader(io.StringIO(text, newline=""))
+    try:
+        rows = _radar_rows(p, reader)
+    except csv.Error as exc:
+        raise InputError(p, f"malformed CSV: {exc}", where=f"line {reader.line_num}") from None
     if not rows:
         raise InputError(p, "no radar detections in the file")
     a = np.array(rows)
@@ -119,6 +220,24 @@ def read_ravnkloa_radar(path: str | os.PathLike[str]) -> RadarDataset:
     k = times.size
     sensor = np.tile([RAVNKLOA_RADAR_POSITION[0], 0.0, RAVNKLOA_RADAR_POSITION[1], 0.0], (k, 1))
     return RadarDataset(start + times, plots, sensor, {}, str(p))
+
+
+def _radar_rows(p: Path, reader: Iterator[list[str]]) -> list[tuple[float, float, float]]:
+    rows: list[tuple[float, float, float]] = []
+    header = next(reader, None)
+    if header is None or [h.strip() for h in header[:3]] != ["scan_time_s", "north_m", "east_m"]:
+        raise InputError(p, f"expected the header scan_time_s,north_m,east_m, got {header}", where="line 1")
+    for line_no, row in enumerate(reader, start=2):
+        if not row:
+            continue
+        try:
+            t, n, e = (float(v) for v in row[:3])
+        except ValueError:
+            raise InputError(p, f"expected three numbers, got {row}", where=f"line {line_no}") from None
+        if not all(math.isfinite(v) for v in (t, n, e)):
+            raise InputError(p, f"non-finite value in {row}", where=f"line {line_no}")
+        rows.append((t, n, e))
+    return rows
 
 
 def _write(ds: RadarDataset, out: str | os.PathLike[str], fmt: str, *, platform: str, metadata: dict) -> str:

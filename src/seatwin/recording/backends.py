@@ -202,7 +202,7 @@ def rollback_sqlite_journal(db: Path) -> bool:
         finally:
             con.close()
     except sqlite3.Error as exc:
-        raise InputError(db, f"cannot roll back the interrupted SQLite transaction: {exc}") from None
+        raise InputError(db, f"cannot roll back the interrupted SQLite transaction: {' '.join(str(exc).split())}") from None
     return True
 
 

@@ -168,15 +168,23 @@ def unpack(
 
     Handles rows padded beyond ``width·point_step`` and ``row_step = 0`` (as in the thesis bags).
     """
+    if min(point_step, width, height, row_step) < 0:
+        raise InputError("PointCloud2", f"negative size: point_step {point_step}, {height}×{width} points, row_step {row_step}")
+    n = width * height
+    if n and point_step == 0:
+        raise InputError("PointCloud2", f"point_step is 0 for {height}×{width} points")
     dtype = dtype_from_fields(fields, point_step, big_endian)
     buf = np.frombuffer(data, dtype=np.uint8) if not isinstance(data, np.ndarray) else data.view(np.uint8).reshape(-1)
-    n = width * height
     packed = width * point_step
     row = row_step if row_step else packed
     if row < packed:
         raise InputError("PointCloud2", f"row_step {row_step} is smaller than width·point_step = {packed}")
-    if buf.size < row * (height - 1) + packed:
-        raise InputError("PointCloud2", f"data has {buf.size} bytes, expected {row * height} for {height}×{width} points")
+    if n and buf.size < row * (height - 1) + packed:
+        raise InputError(
+            "PointCloud2",
+            f"data has {buf.size} bytes, expected {row * (height - 1) + packed} for {height}×{width} points "
+            f"(point_step {point_step}, row_step {row}): width × height × point_step exceeds the data",
+        )
     if n == 0:
         return np.zeros(0, dtype=dtype)
     if row == packed:

@@ -11,6 +11,7 @@ topics, :meth:`Recording.scenario_file` names the scenario file beside it and
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import re
@@ -100,6 +101,16 @@ class VesselTruth:
     source: str = ""
 
 
+def _what(exc: BaseException) -> str:
+    """One line naming a bag library's error: its type and message (rosbags' ReaderError,
+    TypesysError, mcap's errors, SQLite's CorruptError, struct.error, UnicodeDecodeError, and the
+    AssertionError/AttributeError/KeyError the libraries raise on bytes they do not expect)."""
+    text = " ".join(str(exc).split())
+    if len(text) > 300:
+        text = text[:300] + "…"
+    return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
+
+
 def _find_bag(path: Path) -> tuple[Path, str, Path | None]:
     """(bag path, format, run dir or None) for any accepted path."""
     if not path.exists():
@@ -178,7 +189,7 @@ def _open_backend(bag: Path, fmt: str) -> B.Backend:
     except errors as exc:
         if fmt == "mcap":
             return B.McapScanBackend(storage[0])
-        raise InputError(storage[0], f"unreadable SQLite3 bag: {exc}") from None
+        raise InputError(storage[0], f"unreadable SQLite3 bag: {_what(exc)}") from None
 
 
 class Recording:
@@ -193,8 +204,12 @@ class Recording:
         except InputError:
             raise
         except Exception as exc:  # noqa: BLE001 - any reader failure becomes one clear line
-            raise InputError(self.bag, f"cannot read bag: {type(exc).__name__}: {exc}") from None
-        self.store = B.build_typestore(self._b.topics, self._b.ros1)
+            raise InputError(self.bag, f"cannot read bag: {_what(exc)}") from None
+        try:
+            self.store = B.build_typestore(self._b.topics, self._b.ros1)
+        except Exception as exc:  # noqa: BLE001 - rosbags' type system: a corrupt message definition
+            self._b.close()
+            raise InputError(self.bag, f"corrupt message definition: {_what(exc)}") from None
         self._deser = self.store.deserialize_ros1 if self._b.ros1 else self.store.deserialize_cdr
         cfg = (self.manifest or {}).get("topic_config")
         try:
@@ -250,17 +265,27 @@ class Recording:
             unknown = sorted(want - set(self.topics))
             if unknown:
                 raise InputError(self.bag, f"no topic(s) {unknown}; the bag has {sorted(self.topics)}")
-        for topic, msgtype, ts, data in self._b.messages(want):
+        for topic, msgtype, ts, data in self.raw_messages(want):
             try:
                 msg = self._deser(data, msgtype)
-            except Exception as exc:  # noqa: BLE001
-                raise InputError(self.bag, f"cannot decode a {msgtype} message at {ts} ns: {exc}", where=topic) from None
+            except Exception as exc:  # noqa: BLE001 - any decoding failure of bag bytes is bad input
+                raise InputError(self.bag, f"cannot decode a {msgtype} message at {ts} ns: {_what(exc)}", where=topic) from None
             yield Message(topic, msgtype, ts, msg)
 
     def raw_messages(self, topics: set[str] | None = None) -> Iterator[B.RawMessage]:
         """Serialised messages as (topic, msgtype, log time ns, bytes), in the order of :meth:`messages`,
         not decoded: for byte-level comparisons and fast scans (``topics``: all when None)."""
-        return self._b.messages(topics)
+        it = self._b.messages(topics)
+        while True:
+            try:
+                item = next(it)
+            except StopIteration:
+                return
+            except InputError:
+                raise
+            except Exception as exc:  # noqa: BLE001 - the one boundary to rosbags/mcap/SQLite: see _what
+                raise InputError(self.bag, f"cannot read bag: {_what(exc)}") from None
+            yield item
 
     def _typed(self, topic: str | list[str] | None, msgtypes: tuple[str, ...]) -> list[str]:
         if topic is None:
@@ -281,22 +306,38 @@ class Recording:
             return
         for m in self.messages(names):
             c = m.msg
-            try:
-                pts = unpack(
-                    c.data, c.fields, int(c.point_step), int(c.width), int(c.height), int(c.row_step), bool(c.is_bigendian)
+            with self._standard_fields(m):
+                try:
+                    pts = unpack(
+                        c.data, c.fields, int(c.point_step), int(c.width), int(c.height), int(c.row_step), bool(c.is_bigendian)
+                    )
+                except InputError as exc:
+                    raise InputError(self.bag, f"{exc.detail} (message at {m.log_time_ns} ns)", where=m.topic) from None
+                cloud = PointCloud(
+                    m.topic,
+                    stamp_s(c.header.stamp),
+                    c.header.frame_id,
+                    pts,
+                    int(c.height),
+                    int(c.width),
+                    bool(c.is_dense),
+                    m.log_time_ns,
                 )
-            except InputError as exc:
-                raise InputError(self.bag, f"{exc.detail} (message at {m.log_time_ns} ns)", where=m.topic) from None
-            yield PointCloud(
-                m.topic,
-                stamp_s(c.header.stamp),
-                c.header.frame_id,
-                pts,
-                int(c.height),
-                int(c.width),
-                bool(c.is_dense),
-                m.log_time_ns,
-            )
+            yield cloud
+
+    @contextlib.contextmanager
+    def _standard_fields(self, m: Message) -> Iterator[None]:
+        """Turn a missing field of a decoded message into an :class:`InputError`: a bag whose own
+        message definition of a standard type (PointCloud2, Odometry, …) differs from the standard."""
+        try:
+            yield
+        except (AttributeError, TypeError) as exc:
+            raise InputError(
+                self.bag,
+                f"a {m.msgtype} message at {m.log_time_ns} ns lacks the standard fields ({_what(exc)}); "
+                "the bag's own definition of the type differs",
+                where=m.topic,
+            ) from None
 
     def radar_topics(self) -> list[str]:
         """PointCloud2 topics that look like radar plots (our radar template, or range+bearing fields)."""
@@ -319,11 +360,13 @@ class Recording:
         if not names:
             return
         for m in self.messages(names):
-            if m.msgtype == IMAGE:
-                px, enc, cf = image_to_array(m.msg, f"{self.bag} {m.topic}"), str(m.msg.encoding), None
-            else:
-                (px, enc), cf = decode_compressed(m.msg, f"{self.bag} {m.topic}"), str(m.msg.format)
-            yield ImageFrame(m.topic, stamp_s(m.msg.header.stamp), m.msg.header.frame_id, px, enc, cf, m.log_time_ns)
+            with self._standard_fields(m):
+                if m.msgtype == IMAGE:
+                    px, enc, cf = image_to_array(m.msg, f"{self.bag} {m.topic}"), str(m.msg.encoding), None
+                else:
+                    (px, enc), cf = decode_compressed(m.msg, f"{self.bag} {m.topic}"), str(m.msg.format)
+                frame = ImageFrame(m.topic, stamp_s(m.msg.header.stamp), m.msg.header.frame_id, px, enc, cf, m.log_time_ns)
+            yield frame
 
     def static_transforms(self) -> list[StaticTransform]:
         """All transforms on /tf_static (the sensor mounts and the display frame)."""
@@ -332,9 +375,10 @@ class Recording:
             return []
         out = []
         for m in self.messages(topic):
-            for tr in m.msg.transforms:
-                tt, q = tr.transform.translation, tr.transform.rotation
-                out.append(StaticTransform(tr.header.frame_id, tr.child_frame_id, (tt.x, tt.y, tt.z), (q.x, q.y, q.z, q.w)))
+            with self._standard_fields(m):
+                for tr in m.msg.transforms:
+                    tt, q = tr.transform.translation, tr.transform.rotation
+                    out.append(StaticTransform(tr.header.frame_id, tr.child_frame_id, (tt.x, tt.y, tt.z), (q.x, q.y, q.z, q.w)))
         return out
 
     # ---------------------------------------------------------------- ground truth
@@ -364,18 +408,28 @@ class Recording:
                     continue
                 rows = []
                 for m in self.messages(topic):
-                    msg = m.msg
-                    pose = msg.pose.pose if kind == "odom" else msg.pose
-                    p, q = pose.position, pose.orientation
-                    yaw = math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
-                    if kind == "odom":
-                        lin, ang = msg.twist.twist.linear, msg.twist.twist.angular
-                        c, s = math.cos(yaw), math.sin(yaw)
-                        rows.append(
-                            (stamp_s(msg.header.stamp), p.x, p.y, p.z, yaw, c * lin.x - s * lin.y, s * lin.x + c * lin.y, ang.z)
-                        )
-                    else:
-                        rows.append((stamp_s(msg.header.stamp), p.x, p.y, p.z, yaw, np.nan, np.nan, np.nan))
+                    with self._standard_fields(m):
+                        msg = m.msg
+                        pose = msg.pose.pose if kind == "odom" else msg.pose
+                        p, q = pose.position, pose.orientation
+                        yaw = math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
+                        if kind == "odom":
+                            lin, ang = msg.twist.twist.linear, msg.twist.twist.angular
+                            c, s = math.cos(yaw), math.sin(yaw)
+                            rows.append(
+                                (
+                                    stamp_s(msg.header.stamp),
+                                    p.x,
+                                    p.y,
+                                    p.z,
+                                    yaw,
+                                    c * lin.x - s * lin.y,
+                                    s * lin.x + c * lin.y,
+                                    ang.z,
+                                )
+                            )
+                        else:
+                            rows.append((stamp_s(msg.header.stamp), p.x, p.y, p.z, yaw, np.nan, np.nan, np.nan))
                 if not rows:
                     continue
                 a = np.array(sorted(rows))

@@ -7,21 +7,26 @@ from __future__ import annotations
 
 import csv
 import datetime as dt
+import io
 import os
 import re
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
 
-from seatwin.errors import InputError
+from seatwin.errors import InputError, ParameterError
 from seatwin.geo import deg_to_rad_heading, rad_to_deg_heading
 from seatwin.scenario.model import Trajectory
 
 TIME_POSIX = "TimeInSecondsPosix"
 TIME_OF_DAY = "TimeOfDay"
 _VESSEL_COLUMN = re.compile(r"^V(\d+)(x|y|Heading)$")
+MAX_SPEED = 30.0
+"""Default bound [m/s] on a vessel's speed between two samples (about 58 kn): faster is a teleport,
+a corrupt or mis-scaled row, and an :class:`InputError`."""
 
 
 def _parse_time_of_day(text: str, date: dt.date, path: Path, line: int) -> float:
@@ -32,67 +37,109 @@ def _parse_time_of_day(text: str, date: dt.date, path: Path, line: int) -> float
     return dt.datetime.combine(date, t, tzinfo=dt.UTC).timestamp()
 
 
-def read_gemini_csv(path: str | os.PathLike[str], date: dt.date | None = None) -> dict[int, Trajectory]:
+def read_gemini_csv(
+    path: str | os.PathLike[str], date: dt.date | None = None, max_speed: float = MAX_SPEED
+) -> dict[int, Trajectory]:
     """Read a Gemini scenario CSV into one trajectory per vessel number.
 
     ``date`` (UTC) is required when the file has ``TimeOfDay`` instead of POSIX seconds.
-    Raises :class:`InputError` naming the file, line and column for any malformed value.
+    Raises :class:`InputError` naming the file, line and column for any malformed value, for times
+    that do not strictly increase (duplicates and unsorted rows are errors: a scenario is written by
+    a program, and a repeated or misplaced row means a broken export), and for a vessel that moves
+    faster than ``max_speed`` [m/s] between two rows (a teleport).
     """
+    check_max_speed(max_speed)
     path = Path(path)
     try:
-        handle = path.open(newline="")
+        text = path.read_text(encoding="utf-8-sig")
     except OSError as exc:
         raise InputError(path, f"cannot open: {exc.strerror}") from None
-    with handle:
-        reader = csv.reader(handle)
-        header = next(reader, None)
-        if header is None:
-            raise InputError(path, "empty file, expected a header line")
-        header = [h.strip() for h in header]
-        if TIME_POSIX in header:
-            time_col, posix = header.index(TIME_POSIX), True
-        elif TIME_OF_DAY in header:
-            time_col, posix = header.index(TIME_OF_DAY), False
-            if date is None:
-                raise InputError(path, f"the file has {TIME_OF_DAY}; give the recording date (UTC) to place it in time")
-        else:
-            raise InputError(path, f"expected a {TIME_POSIX} or {TIME_OF_DAY} column", where="line 1")
-        columns: dict[int, dict[str, int]] = {}
-        for i, name in enumerate(header):
-            m = _VESSEL_COLUMN.match(name)
-            if m:
-                columns.setdefault(int(m.group(1)), {})[m.group(2)] = i
-        if not columns:
-            raise InputError(path, "no vessel columns V{n}x, V{n}y, V{n}Heading", where="line 1")
-        for n, cols in sorted(columns.items()):
-            missing = [f"V{n}{k}" for k in ("x", "y", "Heading") if k not in cols]
-            if missing:
-                raise InputError(path, f"missing column(s) {', '.join(missing)}", where="line 1")
-        rows: list[list[float]] = []
-        row_lines: list[int] = []
-        time_text: list[str] = []
-        for line_no, row in enumerate(reader, start=2):
-            if not row or all(not c.strip() for c in row):
+    except UnicodeDecodeError as exc:
+        raise InputError(path, f"not UTF-8 text ({exc.reason} at byte {exc.start}); expected a Gemini CSV") from None
+    reader = csv.reader(io.StringIO(text, newline=""))
+    try:
+        return _read_rows(path, reader, date, max_speed)
+    except csv.Error as exc:
+        raise InputError(path, f"malformed CSV: {exc}", where=f"line {reader.line_num}") from None
+
+
+def check_max_speed(max_speed: float) -> None:
+    """A :class:`ParameterError` unless ``max_speed`` is a positive number (``inf`` turns the check off)."""
+    if not isinstance(max_speed, int | float) or not max_speed > 0:
+        raise ParameterError("max_speed", f"expected a speed > 0 m/s (inf: no check), got {max_speed!r}")
+
+
+def _check_speeds(
+    path: Path,
+    time: NDArray[np.float64],
+    data: NDArray[np.float64],
+    columns: dict[int, dict[str, int]],
+    lines: list[int],
+    max_speed: float,
+) -> None:
+    dt_ = np.diff(time)
+    for n, cols in sorted(columns.items()):
+        step = np.hypot(np.diff(data[:, cols["x"]]), np.diff(data[:, cols["y"]]))
+        with np.errstate(over="ignore", invalid="ignore"):
+            speed = step / dt_
+        bad = np.flatnonzero(~(speed <= max_speed))
+        if bad.size:
+            k = int(bad[0])
+            raise InputError(
+                path,
+                f"vessel {n} moves {step[k]:.4g} m in {dt_[k]:.4g} s ({speed[k]:.4g} m/s) after line {lines[k]}, faster than "
+                f"max_speed {max_speed:g} m/s: a teleport (a corrupt or mis-scaled row?)",
+                where=f"line {lines[k + 1]}, columns V{n}x, V{n}y",
+            )
+
+
+def _read_rows(path: Path, reader: Iterator[list[str]], date: dt.date | None, max_speed: float) -> dict[int, Trajectory]:
+    header = next(reader, None)
+    if header is None:
+        raise InputError(path, "empty file, expected a header line")
+    header = [h.strip() for h in header]
+    if TIME_POSIX in header:
+        time_col, posix = header.index(TIME_POSIX), True
+    elif TIME_OF_DAY in header:
+        time_col, posix = header.index(TIME_OF_DAY), False
+        if date is None:
+            raise InputError(path, f"the file has {TIME_OF_DAY}; give the recording date (UTC) to place it in time")
+    else:
+        raise InputError(path, f"expected a {TIME_POSIX} or {TIME_OF_DAY} column", where="line 1")
+    columns: dict[int, dict[str, int]] = {}
+    for i, name in enumerate(header):
+        m = _VESSEL_COLUMN.match(name)
+        if m:
+            columns.setdefault(int(m.group(1)), {})[m.group(2)] = i
+    if not columns:
+        raise InputError(path, "no vessel columns V{n}x, V{n}y, V{n}Heading", where="line 1")
+    for n, cols in sorted(columns.items()):
+        missing = [f"V{n}{k}" for k in ("x", "y", "Heading") if k not in cols]
+        if missing:
+            raise InputError(path, f"missing column(s) {', '.join(missing)}", where="line 1")
+    rows: list[list[float]] = []
+    row_lines: list[int] = []
+    time_text: list[str] = []
+    for line_no, row in enumerate(reader, start=2):
+        if not row or all(not c.strip() for c in row):
+            continue
+        if len(row) != len(header):
+            raise InputError(path, f"expected {len(header)} fields, got {len(row)}", where=f"line {line_no}")
+        values = []
+        for i, cell in enumerate(row):
+            if i == time_col and not posix:
+                values.append(_parse_time_of_day(cell, date, path, line_no))  # type: ignore[arg-type]
                 continue
-            if len(row) != len(header):
-                raise InputError(path, f"expected {len(header)} fields, got {len(row)}", where=f"line {line_no}")
-            values = []
-            for i, cell in enumerate(row):
-                if i == time_col and not posix:
-                    values.append(_parse_time_of_day(cell, date, path, line_no))  # type: ignore[arg-type]
-                    continue
-                try:
-                    v = float(cell)
-                except ValueError:
-                    raise InputError(
-                        path, f"expected a number, got {cell!r}", where=f"line {line_no}, column {header[i]}"
-                    ) from None
-                if not np.isfinite(v):
-                    raise InputError(path, f"expected a finite number, got {cell!r}", where=f"line {line_no}, column {header[i]}")
-                values.append(v)
-            rows.append(values)
-            row_lines.append(line_no)
-            time_text.append(row[time_col].strip())
+            try:
+                v = float(cell)
+            except ValueError:
+                raise InputError(path, f"expected a number, got {cell!r}", where=f"line {line_no}, column {header[i]}") from None
+            if not np.isfinite(v):
+                raise InputError(path, f"expected a finite number, got {cell!r}", where=f"line {line_no}, column {header[i]}")
+            values.append(v)
+        rows.append(values)
+        row_lines.append(line_no)
+        time_text.append(row[time_col].strip())
     if len(rows) < 2:
         raise InputError(path, f"expected at least 2 data lines, got {len(rows)}")
     data = np.asarray(rows, dtype=float)
@@ -106,6 +153,7 @@ def read_gemini_csv(path: str | os.PathLike[str], date: dt.date | None = None) -
             f"{kind} time {time_text[k]} after {time_text[k - 1]} (line {row_lines[k - 1]}); times must increase",
             where=f"line {row_lines[k]}",
         )
+    _check_speeds(path, time, data, columns, row_lines, max_speed)
     return {
         n: Trajectory(
             time=time,

@@ -10,19 +10,19 @@ from typing import Literal
 from seatwin.errors import InputError
 from seatwin.scenario.builtin import builtin_names, builtin_scenario
 from seatwin.scenario.defaults import NOMINAL_DIMENSIONS, OWNSHIP_MODEL, OWNSHIP_NAME, RAVNKLOA, TARGETS_BY_COLUMN
-from seatwin.scenario.gemini_csv import read_gemini_csv
+from seatwin.scenario.gemini_csv import MAX_SPEED, read_gemini_csv
 from seatwin.scenario.model import Role, Scenario, Vessel
 from seatwin.scenario.yaml_format import read_scenario_yaml, write_scenario_yaml
 
 YAML_SUFFIXES = (".yaml", ".yml")
 
 
-def scenario_from_gemini_csv(path: str | os.PathLike[str], date: dt.date | None = None) -> Scenario:
+def scenario_from_gemini_csv(path: str | os.PathLike[str], date: dt.date | None = None, max_speed: float = MAX_SPEED) -> Scenario:
     """A Gemini CSV as a scenario: the highest-numbered vessel (V3) is the ownship milliAmpere,
     V1 and V2 the targets Havfruen and Finn; any other vessel n is a target ``V{n}`` (model generic).
     """
     path = Path(path)
-    trajectories = read_gemini_csv(path, date=date)
+    trajectories = read_gemini_csv(path, date=date, max_speed=max_speed)
     own = max(trajectories)
     vessels = []
     for n, traj in trajectories.items():
@@ -35,10 +35,11 @@ def scenario_from_gemini_csv(path: str | os.PathLike[str], date: dt.date | None 
     return Scenario(name=path.stem, vessels=vessels, origin=RAVNKLOA, source=str(path))
 
 
-def load_scenario(spec: str | os.PathLike[str], date: dt.date | None = None) -> Scenario:
+def load_scenario(spec: str | os.PathLike[str], date: dt.date | None = None, max_speed: float = MAX_SPEED) -> Scenario:
     """Load a scenario from a built-in name, a ``.yaml``/``.yml`` file or a Gemini ``.csv``.
 
     ``date`` (UTC) places a CSV with ``TimeOfDay`` times (it overrides a YAML's ``date``).
+    ``max_speed`` [m/s]: a vessel moving faster between two rows of the CSV is an error (a teleport).
     An unknown name or a missing file raises :class:`InputError` listing the built-ins.
     """
     text = os.fspath(spec)
@@ -51,9 +52,9 @@ def load_scenario(spec: str | os.PathLike[str], date: dt.date | None = None) -> 
         raise InputError(text, "is a directory; expected a scenario .yaml, a Gemini .csv or a built-in name")
     suffix = path.suffix.lower()
     if suffix in YAML_SUFFIXES:
-        return read_scenario_yaml(path, date=date)
+        return read_scenario_yaml(path, date=date, max_speed=max_speed)
     if suffix == ".csv":
-        return scenario_from_gemini_csv(path, date=date)
+        return scenario_from_gemini_csv(path, date=date, max_speed=max_speed)
     raise InputError(text, f"unknown scenario file type {suffix!r}: expected .yaml, .yml or .csv")
 
 

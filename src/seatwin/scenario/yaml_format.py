@@ -32,7 +32,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 from seatwin.errors import InputError
 from seatwin.geo import GeodeticOrigin
 from seatwin.scenario.defaults import RAVNKLOA
-from seatwin.scenario.gemini_csv import read_gemini_csv, write_gemini_csv
+from seatwin.scenario.gemini_csv import MAX_SPEED, check_max_speed, read_gemini_csv, write_gemini_csv
 from seatwin.scenario.model import Dimensions, Role, Scenario, Vessel
 
 Positive = Annotated[float, Field(gt=0, allow_inf_nan=False)]
@@ -113,6 +113,7 @@ def parse_spec(path: Path) -> ScenarioSpec:
         mark = getattr(exc, "problem_mark", None)
         where = f"line {mark.line + 1}, column {mark.column + 1}" if mark is not None else None
         problem = getattr(exc, "problem", None) or str(exc)
+        problem = " ".join(str(problem).replace('in "<unicode string>", ', "at ").split())
         raise InputError(path, f"not valid YAML: {problem}", where=where) from None
     if not isinstance(data, dict):
         raise InputError(path, f"expected a mapping of scenario fields at the top level, got {type(data).__name__}")
@@ -125,8 +126,10 @@ def parse_spec(path: Path) -> ScenarioSpec:
         raise InputError(path, f"{first['msg']}{more}", where=f"field {_field(first['loc'])}") from None
 
 
-def read_scenario_yaml(path: str | os.PathLike[str], date: dt.date | None = None) -> Scenario:
-    """A scenario from its YAML and the Gemini CSV it names; ``date`` overrides the YAML's ``date``."""
+def read_scenario_yaml(path: str | os.PathLike[str], date: dt.date | None = None, max_speed: float = MAX_SPEED) -> Scenario:
+    """A scenario from its YAML and the Gemini CSV it names; ``date`` overrides the YAML's ``date``;
+    ``max_speed`` [m/s] bounds a vessel's speed between two CSV rows (:func:`read_gemini_csv`)."""
+    check_max_speed(max_speed)
     path = Path(path)
     spec = parse_spec(path)
     csv_path = (path.parent / spec.trajectory).resolve()
@@ -142,7 +145,7 @@ def read_scenario_yaml(path: str | os.PathLike[str], date: dt.date | None = None
         harbour = str(raster)
     use_date = date or spec.date
     try:
-        trajectories = read_gemini_csv(csv_path, date=use_date)
+        trajectories = read_gemini_csv(csv_path, date=use_date, max_speed=max_speed)
     except InputError as exc:
         if use_date is None and "TimeOfDay" in exc.detail:
             raise InputError(path, f"{csv_path.name} has TimeOfDay times: give its UTC date", where="field date") from None
