@@ -12,7 +12,7 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 import yaml
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
@@ -84,7 +84,22 @@ class TrackerConfig(BaseModel):
         "Our choice: a g = 1 gate alone would let a track's own detections start duplicates.",
     )
     max_hypotheses: int = Field(
-        10000, ge=1, description="Cap on joint hypotheses per cluster; beyond it the k-best-per-track approximation."
+        10000,
+        ge=1,
+        description="A cluster whose joint hypotheses are bounded by this (Π(1 + gated measurements)) is enumerated "
+        "exactly; a larger one goes to the exact forward–backward pass, then to belief propagation "
+        "(tracking.association).",
+    )
+    max_frontier_work: int = Field(
+        20000,
+        ge=0,
+        description="Work bound (state × option pairs) of the exact forward–backward pass for a cluster too large "
+        "to enumerate; beyond it loopy belief propagation (approximate, bounded cost). Our choice: ~10 ms.",
+    )
+    association: Literal["auto", "exact", "bp"] = Field(
+        "auto",
+        description="How shared clusters are solved: auto (exact where cheap, belief propagation beyond), exact "
+        "(always enumerate: exponential cost), bp (always loopy belief propagation).",
     )
 
     @model_validator(mode="after")

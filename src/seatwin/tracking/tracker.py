@@ -1,7 +1,8 @@
 """The JIPDA multi-target tracker with extended Kalman filters (thesis ch. 5.1.3, Algorithm 2).
 
 Per scan: predict every track (constant velocity, existence × P_S), gate (eq. 5.23), solve
-the joint association exactly per cluster (:mod:`.association`), update each track with
+the joint association per cluster (:mod:`.association`: exact where cheap, belief propagation
+beyond), update each track with
 the probability-weighted mixture of its EKF corrections (moment-matched to one Gaussian),
 update existence, confirm/terminate by thresholds, then start tracks from pairs of
 unassociated measurements of the same sensor within ``d = v_max·ΔT`` (thesis 5.1.3).
@@ -138,8 +139,18 @@ class JIPDATracker:
 
     # -- one scan -------------------------------------------------------------------------
     def step(self, scan: Scan) -> TrackTable:
-        """Process one scan; return the estimates of all live tracks at the scan time."""
+        """Process one scan; return the estimates of all live tracks at the scan time.
+
+        A scan earlier than the last one, a non-finite time or non-finite measurements are an
+        :class:`InputError` (the tracker's state is left as it was).
+        """
         c = self.config
+        if not math.isfinite(scan.time):
+            raise InputError("scans", f"scan time must be finite, got {scan.time!r}")
+        if self.time is not None and scan.time < self.time:
+            raise InputError("scans", f"scans out of time order: a {scan.sensor} scan at {scan.time!r} after {self.time!r}")
+        if not np.isfinite(scan.z).all():
+            raise InputError("scans", f"{scan.sensor} scan at {scan.time!r} has non-finite measurements")
         tuning = c.sensor(scan.sensor)
         self._predict(scan.time)
         z = scan.z
@@ -183,7 +194,8 @@ class JIPDATracker:
         lam = model.clutter_density(z, tuning.clutter_density)
         with np.errstate(under="ignore"):
             L = np.where(gated, tuning.p_detect * np.exp(log_norm[:, None] - 0.5 * d2) / lam[None, :], 0.0)
-        beta0, beta = jipda_marginals(r, L, gated, pd_pg, self.config.max_hypotheses)
+        c = self.config
+        beta0, beta = jipda_marginals(r, L, gated, pd_pg, c.max_hypotheses, c.association, c.max_frontier_work)
         r_post, w0 = existence_posterior(r, beta0, pd_pg)
         # Mixture of the EKF corrections, conditional on existence.
         W = ekf.gain(P, H, S_inv)  # (T, 4, d)
