@@ -80,7 +80,7 @@ def test_track_lidar_recording(tmp_path) -> None:
 @pytest.mark.parametrize(
     "args,msg",
     [
-        (["--sensors", "camera"], "camera detector"),
+        (["--sensors", "camera"], "no camera labels"),
         (["--sensors", "sonar"], "should be 'lidar', 'radar' or 'camera'"),
         (["--tuning", "nope"], "not a tuning preset"),
         (["--sensors", "radar"], "no radar topics"),

@@ -41,6 +41,11 @@ COMMAND_MODULES: list[str] = [
     "fidelity",
     "demo",
     "sweep",
+    "camera",
+    "labels",
+    "serve",
+    "record_stream",
+    "cosim",
 ]
 
 

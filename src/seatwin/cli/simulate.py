@@ -43,24 +43,40 @@ def register(app: typer.Typer) -> None:
         dissipation: bool = typer.Option(False, "--dissipation", help="Range-dependent return probability."),
         fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Bag format."),
         date: str | None = typer.Option(None, "--date", help="UTC date YYYY-MM-DD of a TimeOfDay CSV."),
-        sensors: str = typer.Option("lidar", "--sensors", metavar="LIST", help="Comma-separated ownship sensors: lidar, radar."),
+        sensors: str = typer.Option(
+            "lidar", "--sensors", metavar="LIST", help="Comma-separated ownship sensors: lidar, radar, camera."
+        ),
         radar: str | None = typer.Option(
             None, "--radar", metavar="RADAR.yaml", help="Radar configuration (default: the built-in model)."
         ),
+        camera_hfov: float = typer.Option(82.0, "--camera-hfov", help="Cameras' horizontal field of view [deg]."),
+        camera_distortion: str | None = typer.Option(
+            None, "--camera-distortion", metavar="K1,K2,T1,T2,K3", help="Plumb-bob distortion of the camera images."
+        ),
         quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar."),
+        stream: str | None = typer.Option(
+            None, "--stream", metavar="HOST:PORT", help="Also stream lidar clouds and radar spokes to a SensorStreaming server."
+        ),
     ) -> None:
         """Simulate the ownship's sensors along a scenario and record a ROS bag (MCAP by default).
 
         Topics (defaults): /lidar/points (PointCloud2, VLP-16 layout of thesis Table 4.2),
-        /radar/detections (with --sensors lidar,radar), /ground_truth/<vessel>/pose|odom|fix, /tf, /tf_static.
+        /radar/detections (with --sensors lidar,radar), /camera/{left,front,right}/image_raw|camera_info|labels
+        (with --sensors lidar,camera), /ground_truth/<vessel>/pose|odom|fix, /tf, /tf_static.
         """
         from seatwin.cli.output import split_list
         from seatwin.cli.scenario import _date
         from seatwin.pipeline.simulate import simulate_run
 
+        streamer = None
+        if stream:
+            from seatwin.api.streaming import SensorStreamer
+
+            streamer = SensorStreamer(stream)
         result = simulate_run(
             scenario,
             out,
+            on_frame=streamer.on_frame if streamer is not None else None,
             start=start,
             start_offset=offset,
             duration=duration,
@@ -76,7 +92,13 @@ def register(app: typer.Typer) -> None:
             dissipation=dissipation,
             fmt=fmt.value,
             radar_config=radar,
+            radar_spokes=streamer is not None,
+            camera_hfov_deg=camera_hfov,
+            **({"camera_distortion": split_list(camera_distortion, "camera_distortion")} if camera_distortion else {}),
         )
+        if streamer is not None:
+            streamer.close()
+            typer.echo(f"streamed to {stream}: {streamer.sent}")
         state = "completed" if result.completed else "INCOMPLETE (interrupted)"
         typer.echo(
             f"{state}: {result.simulated_s:.1f} s simulated in {result.wall_s:.1f} s "

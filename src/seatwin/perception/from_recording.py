@@ -3,8 +3,10 @@
 The sensor pose of every sweep is the ownship's ground-truth pose at the sweep's stamp
 (interpolated linearly, heading unwrapped) composed with the sensor's mount from /tf_static.
 Radar plots recorded in the world NED frame (imported datasets) are used as they are, seen
-from the ownship position (the radar platform). Camera bearings need a detector, which comes
-with the camera work: asking for ``camera`` is an error that says so.
+from the ownship position (the radar platform). Camera bearings come from the ``label`` detector
+run on the recorded ground-truth labels (:mod:`seatwin.sensors.camera.detector`): the detections
+of all cameras at one instant form one bearing scan (a vessel seen by two neighbouring cameras
+counts once).
 """
 
 from __future__ import annotations
@@ -89,32 +91,35 @@ def scans_from_recording(
     lidar: LidarClustering | None = None,
     radar: RadarPlots | None = None,
     truth: dict[str, Any] | None = None,
+    camera: Any = None,
 ) -> RecordingScans:
     """Scans of the wanted ``sensors`` from an open :class:`seatwin.recording.Recording`.
 
     ``truth`` (vessel name → truth with ``ownship``, ``time``, ``north``…; e.g.
     :func:`seatwin.evaluation.truth.recording_truth`) poses the sensors; default: the bag's own topics.
+    ``camera``: the :class:`~seatwin.sensors.camera.detector.LabelDetectorConfig` (default: its
+    defaults, seeded with the recording's seed).
     """
     for s in sensors:
         if s not in SENSORS:
             raise ParameterError("sensors", f"unknown sensor {s!r}; expected some of {', '.join(SENSORS)}")
-    if "camera" in sensors:
-        raise ParameterError(
-            "sensors",
-            "camera: the bearing measurement model is in place, but the camera detector "
-            "(images → bearings) is not part of seatwin yet; use lidar and/or radar",
-        )
     mask = mask or NoMask()
     radar_topics = rec.radar_topics() if "radar" in sensors else []
     lidar_topics = []
     if "lidar" in sensors:
         all_radar = set(rec.radar_topics())
         lidar_topics = [t for t in rec.topics_of_type("sensor_msgs/msg/PointCloud2") if t not in all_radar]
-    found = {"radar": radar_topics, "lidar": lidar_topics}
+    camera_topics = rec.topics_of_type("vision_msgs/msg/Detection2DArray") if "camera" in sensors else []
+    if "camera" in sensors and not camera_topics:
+        raise InputError(
+            rec.path, "no camera labels (vision_msgs/Detection2DArray) in this recording; simulate with --sensors ...,camera"
+        )
+    found = {"radar": radar_topics, "lidar": lidar_topics, "camera": camera_topics}
     wanted = radar_topics + lidar_topics
-    if not wanted:
+    if not wanted and not camera_topics:
         raise InputError(rec.path, f"no {' or '.join(sensors)} topics in this recording; it has {sorted(rec.topics)}")
-    total = sum(rec.topics[t].count for t in wanted)
+    n_camera = len({m_ns for m_ns in _label_stamps(rec, camera_topics)}) if camera_topics else 0
+    total = sum(rec.topics[t].count for t in wanted) + n_camera
     mounts = {st.child: Mount.from_quaternion(st.translation, st.rotation) for st in rec.static_transforms()}
     own = _ownship(rec, truth)
 
@@ -132,6 +137,19 @@ def scans_from_recording(
         return sensor_pose(n, e, h, mount, d)
 
     def generate() -> Iterator[Scan]:
+        import heapq
+
+        streams = []
+        if wanted:
+            streams.append(cloud_scans())
+        if camera_topics:
+            from seatwin.sensors.camera.detector import LabelDetectorConfig
+
+            det = camera or LabelDetectorConfig(seed=int((rec.manifest or {}).get("seed") or 0))
+            streams.append(camera_scans(rec, camera_topics, det, pose_for))
+        yield from heapq.merge(*streams, key=lambda s: s.time)
+
+    def cloud_scans() -> Iterator[Scan]:
         for cloud in rec.point_clouds(wanted):
             pts = cloud.points
             names = pts.dtype.names or ()
@@ -159,3 +177,73 @@ def scans_from_recording(
                 yield lidar_scan(cloud.xyz(), cloud.stamp, pose, mask, lidar, sensor="lidar")
 
     return RecordingScans(generate(), total, found, None if own is None else own.name)
+
+
+def _label_stamps(rec: Any, topics: list[str]) -> list[int]:
+    """Log times of the labels messages (one camera instant may hold several cameras)."""
+    return [ts for _, _, ts, _ in rec.raw_messages(set(topics))]
+
+
+def _camera_info(rec: Any, labels_topic: str) -> tuple[np.ndarray, tuple[float, ...] | None]:
+    """(K, D) of the camera whose labels are on ``labels_topic`` (its ``camera_info`` beside it)."""
+    info_topic = labels_topic.rsplit("/", 1)[0] + "/camera_info"
+    if info_topic not in rec.topics:
+        raise InputError(rec.path, f"no {info_topic} for the labels on {labels_topic}: the camera model is unknown")
+    msg = next(rec.messages(info_topic)).msg
+    k = np.asarray(msg.k if hasattr(msg, "k") else msg.K, float).reshape(3, 3)
+    d = tuple(float(x) for x in (msg.d if hasattr(msg, "d") else msg.D))
+    return k, (d if any(d) else None)
+
+
+def camera_scans(rec: Any, topics: list[str], det: Any, pose_for: Any) -> Iterator[Scan]:
+    """Bearing scans of the ``label`` detector over the labels ``topics``: one scan per instant, all cameras."""
+    from seatwin.perception.measurements import MeasurementKind
+    from seatwin.recording.reader import stamp_s
+    from seatwin.sensors.camera.detector import detect, detection_bearings
+
+    models = {t: _camera_info(rec, t) for t in topics}
+    pending: list[tuple[float, float]] = []  # (bearing, confidence) at the current instant
+    current: tuple[float, float, float] | None = None  # (time, north, east)
+
+    def flush() -> Iterator[Scan]:
+        if current is None:
+            return
+        kept: list[tuple[float, float]] = []
+        for b, c in sorted(pending, key=lambda x: -x[1]):  # a vessel in two cameras' overlap counts once
+            if all(abs((b - k + np.pi) % (2 * np.pi) - np.pi) > np.radians(1.5) for k, _ in kept):
+                kept.append((b, c))
+        z = np.array([b for b, _ in kept], float).reshape(-1, 1)
+        yield Scan(current[0], "camera", MeasurementKind.BEARING, z, current[1], current[2], {"confidence": [c for _, c in kept]})
+
+    for m in rec.messages(topics):
+        arr = m.msg
+        t = stamp_s(arr.header.stamp)
+        if current is not None and abs(t - current[0]) > 1e-6:
+            yield from flush()
+            pending = []
+            current = None
+        pose = pose_for(arr.header.frame_id, t)
+        if current is None:
+            current = (t, pose.north, pose.east)
+        boxes = []
+        for d in arr.detections:
+            scores = {r.hypothesis.class_id: float(r.hypothesis.score) for r in d.results}
+            boxes.append(
+                (
+                    d.id,
+                    d.bbox.center.position.x,
+                    d.bbox.center.position.y,
+                    d.bbox.size_x,
+                    d.bbox.size_y,
+                    scores.get("vessel", 1.0),
+                )
+            )
+        k, dist = models[m.topic]
+        w, h = int(round(2 * (k[0, 2] + 0.5))), int(round(2 * (k[1, 2] + 0.5)))
+        dets = detect(boxes, det, m.topic, m.log_time_ns, w, h)
+        if dets:
+            u = np.array([x.center_x for x in dets])
+            v = np.array([x.center_y for x in dets])
+            bearings = detection_bearings(u, v, k, dist, pose.rotation)
+            pending += [(float(b), x.confidence) for b, x in zip(bearings, dets, strict=True)]
+    yield from flush()

@@ -22,11 +22,13 @@ def simulate_run(
     duration: float | None = None,
     date: dt.date | None = None,
     progress: bool | Callable[[float, float], None] = True,
+    on_frame: Callable[[Any, float, int, Any], None] | None = None,
     **changes: Any,
 ) -> SimulationResult:
     """Simulate ``scenario`` (built-in name, .yaml, Gemini .csv — ``date`` for TimeOfDay CSVs — or a
     :class:`Scenario`) into the new run directory ``out`` from POSIX ``start`` or ``start_offset`` seconds after the
-    scenario's start (default: its start); ``changes`` override ``settings`` fields."""
+    scenario's start (default: its start); ``changes`` override ``settings`` fields; ``on_frame(sensor, t,
+    frame, data)`` sees every frame (``--stream``)."""
     from seatwin.scenario import Scenario
     from seatwin.scenario.load import load_scenario
     from seatwin.sim import simulate_scenario
@@ -38,4 +40,4 @@ def simulate_run(
     sc = scenario if isinstance(scenario, Scenario) else load_scenario(str(scenario), date=date)
     if start_offset is not None:
         start = sc.start + float(start_offset)
-    return simulate_scenario(sc, out, settings, start=start, duration=duration, progress=progress, **changes)
+    return simulate_scenario(sc, out, settings, start=start, duration=duration, progress=progress, on_frame=on_frame, **changes)

@@ -160,8 +160,7 @@ def track_recording(
                 present.append("lidar")
             wanted = tuple(present) or ("lidar", "radar")
         for s in wanted:
-            if s != "camera":
-                cfg.sensor(s)  # the tuning must cover every sensor used
+            cfg.sensor(s)  # the tuning must cover every sensor used
         found = scans_from_recording(
             rec,
             wanted,

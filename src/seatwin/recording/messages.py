@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 from rosbags.typesys import Stores, get_typestore
 from rosbags.typesys.store import Typestore
 
@@ -34,8 +34,29 @@ def typestore(fmt: str) -> Typestore:
             from rosbags.typesys import get_types_from_msg
 
             store.register(get_types_from_msg("geometry_msgs/TransformStamped[] transforms", "tf2_msgs/msg/TFMessage"))
+        if "vision_msgs/msg/Detection2DArray" not in store.types:  # neither store ships vision_msgs
+            from rosbags.typesys import get_types_from_msg
+
+            types: dict[str, Any] = {}
+            for name, text in VISION_MSGS.items():
+                types.update(get_types_from_msg(text, name))
+            store.register(types)
         _STORES[key] = store
     return _STORES[key]
+
+
+VISION_MSGS: dict[str, str] = {
+    "vision_msgs/msg/Point2D": "float64 x\nfloat64 y",
+    "vision_msgs/msg/Pose2D": "vision_msgs/Point2D position\nfloat64 theta",
+    "vision_msgs/msg/BoundingBox2D": "vision_msgs/Pose2D center\nfloat64 size_x\nfloat64 size_y",
+    "vision_msgs/msg/ObjectHypothesis": "string class_id\nfloat64 score",
+    "vision_msgs/msg/ObjectHypothesisWithPose": "vision_msgs/ObjectHypothesis hypothesis\ngeometry_msgs/PoseWithCovariance pose",
+    "vision_msgs/msg/Detection2D": "std_msgs/Header header\nvision_msgs/ObjectHypothesisWithPose[] results\n"
+    "vision_msgs/BoundingBox2D bbox\nstring id",
+    "vision_msgs/msg/Detection2DArray": "std_msgs/Header header\nvision_msgs/Detection2D[] detections",
+}
+"""``vision_msgs`` 4.x (ROS 2 Humble) definitions of the 2-D detection messages, registered in both
+typestores (a ROS 1 bag carries the same layout with its own Header)."""
 
 
 def split_stamp(t: float) -> tuple[int, int]:
@@ -200,6 +221,87 @@ def compressed_image(store: Typestore, t: float, frame_id: str, payload: bytes, 
         format=fmt,
         data=np.frombuffer(payload, dtype=np.uint8),
     )
+
+
+def camera_info(
+    store: Typestore,
+    t: float,
+    frame_id: str,
+    width: int,
+    height: int,
+    k: ArrayLike,
+    d: Sequence[float],
+    r: ArrayLike,
+    p: ArrayLike,
+    distortion_model: str = "plumb_bob",
+) -> Any:
+    """A ``sensor_msgs/CameraInfo`` (row-major K 3×3, R 3×3, P 3×4; D as given; no binning, full ROI)."""
+    T = store.types
+    CI = T["sensor_msgs/msg/CameraInfo"]
+    roi = T["sensor_msgs/msg/RegionOfInterest"](x_offset=0, y_offset=0, height=0, width=0, do_rectify=False)
+    fields = CI.__dataclass_fields__
+    names = ("k", "r", "p", "d") if "k" in fields else ("K", "R", "P", "D")  # ROS 2 lower case, ROS 1 upper
+    values = dict(
+        zip(
+            names,
+            (
+                np.asarray(k, np.float64).reshape(9),
+                np.asarray(r, np.float64).reshape(9),
+                np.asarray(p, np.float64).reshape(12),
+                np.asarray(d, np.float64).reshape(-1),
+            ),
+            strict=True,
+        )
+    )
+    return CI(
+        header=header(store, t, frame_id),
+        height=int(height),
+        width=int(width),
+        distortion_model=distortion_model,
+        binning_x=0,
+        binning_y=0,
+        roi=roi,
+        **values,
+    )
+
+
+@dataclass(frozen=True)
+class Box2D:
+    """One 2-D detection: centre and size [pixels], an id (the instance) and (class, score) hypotheses."""
+
+    id: str
+    center_x: float
+    center_y: float
+    size_x: float
+    size_y: float
+    results: tuple[tuple[str, float], ...] = ()
+
+
+def detection2d_array(store: Typestore, t: float, frame_id: str, boxes: Sequence[Box2D]) -> Any:
+    """A ``vision_msgs/Detection2DArray`` (vision_msgs 4.x layout) of ``boxes``."""
+    T = store.types
+    zeros = np.zeros(36, dtype=np.float64)
+    pose = T["geometry_msgs/msg/PoseWithCovariance"](
+        pose=T["geometry_msgs/msg/Pose"](position=_point(store, (0, 0, 0)), orientation=_quat(store, (0, 0, 0, 1))),
+        covariance=zeros,
+    )
+    dets = []
+    for b in boxes:
+        bbox = T["vision_msgs/msg/BoundingBox2D"](
+            center=T["vision_msgs/msg/Pose2D"](
+                position=T["vision_msgs/msg/Point2D"](x=float(b.center_x), y=float(b.center_y)), theta=0.0
+            ),
+            size_x=float(b.size_x),
+            size_y=float(b.size_y),
+        )
+        results = [
+            T["vision_msgs/msg/ObjectHypothesisWithPose"](
+                hypothesis=T["vision_msgs/msg/ObjectHypothesis"](class_id=c, score=float(sc)), pose=pose
+            )
+            for c, sc in b.results
+        ]
+        dets.append(T["vision_msgs/msg/Detection2D"](header=header(store, t, frame_id), results=results, bbox=bbox, id=b.id))
+    return T["vision_msgs/msg/Detection2DArray"](header=header(store, t, frame_id), detections=dets)
 
 
 @dataclass(frozen=True)

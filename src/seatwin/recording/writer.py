@@ -325,6 +325,32 @@ class RecordingWriter:
         self.write(topic, t, M.image(self.store, t, frame_id, pixels, encoding))
 
     @_timed
+    def write_camera_info(
+        self,
+        topic: str,
+        frame_id: str,
+        t: float,
+        width: int,
+        height: int,
+        k: ArrayLike,
+        d: Sequence[float],
+        r: ArrayLike | None = None,
+        p: ArrayLike | None = None,
+        distortion_model: str = "plumb_bob",
+    ) -> None:
+        """A ``sensor_msgs/CameraInfo``: K (3×3), D (plumb-bob k1 k2 t1 t2 k3), R (default I), P (default [K | 0])."""
+        kk = np.asarray(k, float).reshape(3, 3)
+        if p is None:
+            p = np.concatenate([kk, np.zeros((3, 1))], axis=1)
+        r = np.eye(3) if r is None else r
+        self.write(topic, t, M.camera_info(self.store, t, frame_id, width, height, kk, d, r, p, distortion_model))
+
+    @_timed
+    def write_labels(self, topic: str, frame_id: str, t: float, boxes: Sequence[M.Box2D]) -> None:
+        """2-D boxes as a ``vision_msgs/Detection2DArray`` (vision_msgs 4.x layout)."""
+        self.write(topic, t, M.detection2d_array(self.store, t, frame_id, boxes))
+
+    @_timed
     def write_compressed_image(
         self,
         topic: str,

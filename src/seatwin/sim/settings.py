@@ -12,7 +12,7 @@ from pydantic import Field, field_validator
 
 from seatwin.settings import Settings
 
-SENSOR_NAMES = ("lidar", "radar")
+SENSOR_NAMES = ("lidar", "radar", "camera")
 LIDAR_MODES = ("raycast", "depthbuffer", "depthbuffer-legacy")
 BAG_FORMATS = ("mcap", "sqlite3", "ros1")
 
@@ -20,7 +20,7 @@ BAG_FORMATS = ("mcap", "sqlite3", "ros1")
 class SimulationSettings(Settings):
     """Every choice of ``simulate`` besides the scenario and the time window."""
 
-    sensors: tuple[Literal["lidar", "radar"], ...] = Field(
+    sensors: tuple[Literal["lidar", "radar", "camera"], ...] = Field(
         ("lidar",), min_length=1, description="Sensors on the ownship, simulated in one loop (ground truth is always recorded)."
     )
     seed: int | None = Field(None, description="Seed of every random draw (default: the scenario's).")
@@ -53,6 +53,11 @@ class SimulationSettings(Settings):
         description="Keep each radar rotation's raw spokes (Gemini RadarStreamingRequest "
         "layout) on the captured frames, for export or streaming.",
     )
+    camera_hfov_deg: float = Field(82.0, gt=1.0, lt=179.0, description="Cameras' horizontal field of view [deg].")
+    camera_distortion: tuple[float, float, float, float, float] = Field(
+        (0.0, 0.0, 0.0, 0.0, 0.0), description="Plumb-bob k1 k2 t1 t2 k3 applied to the camera images (zeros: pinhole)."
+    )
+    camera_labels: bool = Field(True, description="Record ground-truth 2-D boxes of the vessels per camera image.")
     fmt: Literal["mcap", "sqlite3", "ros1"] = Field("mcap", description="Bag format.")
     ground_truth_rate_hz: float = Field(10.0, gt=0, description="Rate of the ground-truth topics [Hz].")
 

@@ -182,6 +182,12 @@ class Scene:
             raise InputError(None, f"no vessel named {name!r}; vessels are {self.vessel_names}")
         return self._tracks[name].at(t)
 
+    def update_trajectory(self, name: str, traj: Track) -> None:
+        """Pose vessel ``name`` along ``traj`` from now on (a trajectory that grows, as in ``seatwin serve``)."""
+        if name not in self._tracks:
+            raise InputError(None, f"no vessel named {name!r}; vessels are {self.vessel_names}")
+        self._tracks[name] = _PoseTrack(traj)
+
     def motion_circle(self, name: str, t0: float, t1: float) -> tuple[float, float, float]:
         """A circle (north, east, radius) holding vessel ``name``'s whole footprint during [t0, t1].
 

@@ -1,0 +1,43 @@
+"""``seatwin record-stream``: Gemini's SensorStreaming and Navigation services, recording what arrives into a ROS bag."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from seatwin.cli.simulate import BagFormat
+
+
+def register(app: typer.Typer) -> None:
+    @app.command("record-stream")
+    def record_stream_cmd(
+        out: Path = typer.Option(..., "--out", help="New run directory to record into."),
+        port: int = typer.Option(50052, "--port", help="TCP port of the services (0: any free one)."),
+        host: str = typer.Option("127.0.0.1", "--host", help="Address to listen on (default loopback only)."),
+        ownship: str = typer.Option("milliAmpere", "--ownship", help="Vessel whose navigation messages also give a NavSatFix."),
+        fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Bag format."),
+    ) -> None:
+        """Serve sensorstreaming.SensorStreaming and navigation.Navigation; record every message into a ROS bag.
+
+        Lidar clouds → /<frame_id>/points (PointCloud2), camera images → /<frame_id>/image_raw,
+        radar spokes → /radar/spokes (mono8, a row per spoke), navigation → /ground_truth/<vessel>/...
+        Ctrl-C or SIGTERM finishes the bag (manifest completed: true).
+        """
+        import signal
+        import threading
+
+        from seatwin.api.streaming import record_stream
+
+        handle = record_stream(out, port=port, host=host, fmt=fmt.value, ownship=ownship)
+        stop = threading.Event()
+        previous = {s: signal.signal(s, lambda *_: stop.set()) for s in (signal.SIGINT, signal.SIGTERM)}
+        typer.echo(f"serving SensorStreaming + Navigation on {handle.address}; recording into {out} (Ctrl-C to finish)")
+        try:
+            while not stop.wait(0.2):
+                pass
+        finally:
+            counts = handle.stop()
+            for s, h in previous.items():
+                signal.signal(s, h)
+        typer.echo(f"completed: recorded {counts}; recording in {out}")

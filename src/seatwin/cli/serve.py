@@ -1,0 +1,87 @@
+"""``seatwin serve``: Gemini's ``Simulation`` gRPC service — an OSP scenario generator poses the vessels, seatwin records."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from seatwin.cli.simulate import BagFormat, LidarMode
+
+
+def register(app: typer.Typer) -> None:
+    @app.command("serve")
+    def serve_cmd(
+        out: Path = typer.Option(..., "--out", help="New run directory to record into."),
+        port: int = typer.Option(50051, "--port", help="TCP port of the Simulation service (0: any free one)."),
+        host: str = typer.Option("127.0.0.1", "--host", help="Address to listen on (default loopback only)."),
+        seed: int = typer.Option(0, "--seed", help="Seed of every random draw."),
+        vessels: str = typer.Option(
+            "Havfruen,Finn,milliAmpere", "--vessels", metavar="LIST", help="Vessel names in the order of the steps' poses."
+        ),
+        ownship: str = typer.Option("milliAmpere", "--ownship", help="The vessel carrying the sensors."),
+        sensors: str = typer.Option(
+            "lidar",
+            "--sensors",
+            metavar="LIST",
+            help="Comma-separated ownship sensors: lidar, radar; 'none' for ground truth only.",
+        ),
+        lidar_mode: LidarMode = typer.Option(LidarMode.raycast, "--lidar-mode", help="Lidar range model."),
+        lidar_preset: str = typer.Option("vlp16", "--lidar-preset", help="vlp16 (1800 columns) or vlp16-thesis (1024)."),
+        fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Bag format."),
+        stream: str | None = typer.Option(
+            None,
+            "--stream",
+            metavar="HOST:PORT",
+            help="Also stream lidar clouds and radar spokes to this SensorStreaming server.",
+        ),
+    ) -> None:
+        """Serve Gemini's GeminiOSPInterface.Simulation (DoStep, SetStartTime) and record what the steps make.
+
+        Each DoStep poses the vessels (north, east [m], heading [deg clockwise from north], in --vessels
+        order) at `time` seconds since the SetStartTime POSIX start, runs every sensor due in the one
+        loop and records as `seatwin simulate` does, then answers (lock-step). Ctrl-C or SIGTERM
+        finishes the bag (manifest completed: true).
+        """
+        import signal
+        import threading
+
+        from seatwin.api.server import serve
+        from seatwin.cli.output import split_list
+
+        sensor_list = split_list(sensors, "sensors") or ()
+        streamer = None
+        if stream:
+            from seatwin.api.streaming import SensorStreamer
+
+            streamer = SensorStreamer(stream)
+        handle = serve(
+            out,
+            port=port,
+            host=host,
+            seed=seed,
+            vessels=split_list(vessels, "--vessels"),
+            ownship=ownship,
+            sensors=() if sensor_list == ("none",) else sensor_list,
+            lidar_mode=lidar_mode.value,
+            lidar_preset=lidar_preset,
+            fmt=fmt.value,
+            radar_spokes=streamer is not None,
+            on_frame=streamer.on_frame if streamer is not None else None,
+        )
+        stop = threading.Event()
+        previous = {s: signal.signal(s, lambda *_: stop.set()) for s in (signal.SIGINT, signal.SIGTERM)}
+        typer.echo(f"serving GeminiOSPInterface.Simulation on {handle.address}; recording into {out} (Ctrl-C to finish)")
+        try:
+            while not stop.wait(0.2):
+                pass
+        finally:
+            result = handle.stop()
+            if streamer is not None:
+                streamer.close()
+            for s, h in previous.items():
+                signal.signal(s, h)
+        typer.echo(
+            f"completed: {handle.servicer.steps} steps ({handle.servicer.rejected} refused), "
+            f"{result.simulated_s:.1f} s simulated; frames {result.frames}; recording in {result.run_dir}"
+        )

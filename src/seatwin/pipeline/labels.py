@@ -1,0 +1,172 @@
+"""Camera images and their ground-truth labels out of the twin: COCO export of a run, snapshots of a scenario.
+
+``export_coco(run, out)`` writes every recorded camera image as PNG plus one COCO
+``annotations.json`` (the format standard detector training tools read): one category
+``vessel``, boxes ``[x, y, width, height]`` in pixels, and per annotation the vessel's name
+(``instance``), its ``visible_fraction`` and ``truncation`` under ``attributes``.
+``camera_snapshot(scenario, t, out)`` renders the rig at one time and writes the three images
+with the ground-truth boxes drawn.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from seatwin.errors import InputError
+
+COCO_CATEGORIES = [{"id": 1, "name": "vessel", "supercategory": "vessel"}]
+
+
+@dataclass(frozen=True)
+class CocoExport:
+    out_dir: Path
+    images: int
+    annotations: int
+    annotations_file: Path
+
+
+def _save_png(path: Path, bgr: NDArray[np.uint8]) -> None:
+    from PIL import Image
+
+    Image.fromarray(np.ascontiguousarray(bgr[..., ::-1])).save(path, format="PNG")
+
+
+def _labels_topic(image_topic: str) -> str:
+    return image_topic.rsplit("/", 1)[0] + "/labels" if image_topic.endswith("/image_raw") else image_topic + "/labels"
+
+
+def _stamp(msg: Any) -> int:
+    return int(msg.header.stamp.sec) * 1_000_000_000 + int(msg.header.stamp.nanosec)
+
+
+def export_coco(run: str | Path, out: str | Path, min_visible_fraction: float = 0.0) -> CocoExport:
+    """Every camera image of the recording in ``run`` as PNG in ``out/images`` and ``out/annotations.json``.
+
+    Labels whose ``visible_fraction`` is at most ``min_visible_fraction`` are left out (default:
+    only vessels hidden completely).
+    """
+    from seatwin.recording import open_bag
+    from seatwin.recording.images import image_to_array
+
+    out = Path(out)
+    with open_bag(run) as rec:
+        image_topics = [t for t, i in sorted(rec.topics.items()) if i.msgtype == "sensor_msgs/msg/Image"]
+        if not image_topics:
+            raise InputError(run, "the recording has no camera images (simulate with --sensors ...,camera)")
+        label_topics = [_labels_topic(t) for t in image_topics if _labels_topic(t) in rec.topics]
+        labels: dict[tuple[str, int], Any] = {}
+        if label_topics:
+            for m in rec.messages(label_topics):
+                labels[(m.topic, _stamp(m.msg))] = m.msg
+        (out / "images").mkdir(parents=True, exist_ok=True)
+        images, annotations = [], []
+        for m in rec.messages(image_topics):
+            stamp = _stamp(m.msg)
+            camera = m.topic.strip("/").replace("/image_raw", "").replace("/", "_")
+            name = f"{camera}_{stamp}.png"
+            pixels = image_to_array(m.msg, m.topic)
+            if m.msg.encoding == "rgb8":
+                pixels = pixels[..., ::-1]
+            _save_png(out / "images" / name, pixels)
+            image_id = len(images) + 1
+            images.append(
+                {
+                    "id": image_id,
+                    "file_name": f"images/{name}",
+                    "width": int(m.msg.width),
+                    "height": int(m.msg.height),
+                    "camera": camera,
+                    "frame_id": m.msg.header.frame_id,
+                    "stamp_ns": stamp,
+                }
+            )
+            arr = labels.get((_labels_topic(m.topic), stamp))
+            for det in arr.detections if arr is not None else ():
+                scores = {r.hypothesis.class_id: float(r.hypothesis.score) for r in det.results}
+                visible = scores.get("vessel", 1.0)
+                if visible <= min_visible_fraction:
+                    continue
+                cx, cy = float(det.bbox.center.position.x), float(det.bbox.center.position.y)
+                w, h = float(det.bbox.size_x), float(det.bbox.size_y)
+                # continuous pixel coordinates (pixel centres at integers) → COCO (pixel edges at integers)
+                x0, y0 = cx - w / 2 + 0.5, cy - h / 2 + 0.5
+                annotations.append(
+                    {
+                        "id": len(annotations) + 1,
+                        "image_id": image_id,
+                        "category_id": 1,
+                        "bbox": [round(x0, 3), round(y0, 3), round(w, 3), round(h, 3)],
+                        "area": round(w * h, 3),
+                        "iscrowd": 0,
+                        "attributes": {
+                            "instance": det.id,
+                            "visible_fraction": visible,
+                            "truncation": scores.get("truncation", 0.0),
+                        },
+                    }
+                )
+    coco = {
+        "info": {"description": f"seatwin camera labels of {Path(run).name}", "version": "1.0"},
+        "images": images,
+        "annotations": annotations,
+        "categories": COCO_CATEGORIES,
+    }
+    path = out / "annotations.json"
+    path.write_text(json.dumps(coco, indent=1))
+    return CocoExport(out, len(images), len(annotations), path)
+
+
+def draw_boxes(bgr: NDArray[np.uint8], labels: list[Any]) -> Any:
+    """A PIL RGB image of ``bgr`` with each label's box and name drawn."""
+    from PIL import Image, ImageDraw
+
+    img = Image.fromarray(np.ascontiguousarray(bgr[..., ::-1]))
+    draw = ImageDraw.Draw(img)
+    for b in labels:
+        draw.rectangle([b.x_min, b.y_min, b.x_max, b.y_max], outline=(255, 40, 40), width=2)
+        draw.text((b.x_min + 2, max(b.y_min - 12, 0)), f"{b.instance} {b.visible_fraction:.2f}", fill=(255, 255, 0))
+    return img
+
+
+@dataclass(frozen=True)
+class Snapshot:
+    files: list[Path]
+    labels: dict[str, list[Any]]
+
+
+def camera_snapshot(scenario: Any, time: float, out: str | Path, *, absolute: bool = False, boxes: bool = True) -> Snapshot:
+    """Render the rig of ``scenario`` (a name, a file or a :class:`~seatwin.scenario.Scenario`) at ``time``
+    seconds after its start (POSIX with ``absolute``) into ``out/<camera>.png`` with the boxes drawn."""
+    from seatwin.scenario import Scenario
+    from seatwin.scenario.load import load_scenario
+    from seatwin.sensors.camera.config import CameraConfig
+    from seatwin.sim.camera import CameraSensor
+    from seatwin.world.scene import Scene
+
+    sc = scenario if isinstance(scenario, Scenario) else load_scenario(str(scenario))
+    if sc.ownship is None:
+        raise InputError(sc.source, "the scenario has no ownship to carry the cameras")
+    t = float(time) if absolute else sc.start + float(time)
+    if not sc.start <= t <= sc.end:
+        from seatwin.errors import ParameterError
+
+        raise ParameterError("time", f"{t - sc.start:.3f} s is outside the scenario (0 … {sc.end - sc.start:.3f} s)")
+    sensor = CameraSensor(CameraConfig(), Scene.from_scenario(sc), sc.ownship.name)
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    files, labels = [], {}
+    for img in sensor.capture(t, 0):
+        path = out / f"{img.name}.png"
+        if boxes:
+            draw_boxes(img.bgr, img.labels).save(path, format="PNG")
+        else:
+            _save_png(path, img.bgr)
+        files.append(path)
+        labels[img.name] = img.labels
+    return Snapshot(files, labels)

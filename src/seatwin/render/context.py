@@ -1,0 +1,51 @@
+"""A headless OpenGL context through EGL (Mesa llvmpipe on a CPU, the vendor driver on a GPU).
+
+A missing EGL or GL library is bad *environment* input: :func:`create_context` raises one
+:class:`~seatwin.errors.InputError` naming the Debian packages to install (the Makefile's
+``DEB_PACKAGES`` installs them when run as root), never a bare traceback.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from seatwin.errors import InputError
+
+DEBIAN_PACKAGES = "libegl1 libgl1-mesa-dri libgl1"
+"""What headless rendering needs on Debian/Ubuntu (``apt-get install`` them)."""
+
+_CONTEXT: Any = None
+
+
+def create_context(shared: bool = True) -> Any:
+    """A standalone ``moderngl`` context on the EGL back end (OpenGL ≥ 3.3 core).
+
+    ``shared`` returns one process-wide context (creating an EGL display is slow); every
+    renderer owns its own buffers in it. Raises :class:`InputError` when moderngl, EGL or a
+    GL driver is missing.
+    """
+    global _CONTEXT
+    if shared and _CONTEXT is not None:
+        return _CONTEXT
+    try:
+        import moderngl
+    except ImportError:  # pragma: no cover - a dependency of the package
+        raise InputError("moderngl", "the camera renderer needs moderngl (pip install moderngl)") from None
+    try:
+        ctx = moderngl.create_context(standalone=True, backend="egl", require=330)
+    except Exception as exc:  # noqa: BLE001 - glcontext raises plain Exceptions for a missing library or driver
+        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise InputError(
+            "EGL",
+            f"cannot create a headless OpenGL context ({first}); "
+            f"install the Debian packages {DEBIAN_PACKAGES} (apt-get install {DEBIAN_PACKAGES}, or `make deb` as root)",
+        ) from None
+    ctx.gc_mode = "auto"  # GL objects go with their Python objects (a renderer per run would leak ~6 MB otherwise)
+    if shared:
+        _CONTEXT = ctx
+    return ctx
+
+
+def renderer_name(ctx: Any) -> str:
+    """The GL renderer string (``llvmpipe (LLVM …)`` on the CPU, the GPU's name otherwise)."""
+    return str(ctx.info.get("GL_RENDERER", "unknown"))

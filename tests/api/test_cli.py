@@ -1,0 +1,67 @@
+"""``seatwin serve`` and ``seatwin record-stream`` as processes: they listen, serve, and finish the bag on SIGTERM/SIGINT."""
+
+from __future__ import annotations
+
+import json
+import re
+import signal
+import subprocess
+import sys
+
+import pytest
+
+from seatwin.api.client import SimulationClient
+from seatwin.cli.main import run
+from seatwin.recording import open_bag
+
+
+def _start(args):
+    proc = subprocess.Popen(
+        [sys.executable, "-c", "from seatwin.cli.main import main; main()", *args],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    line = proc.stdout.readline()
+    m = re.search(r"on (127\.0\.0\.1:\d+)", line)
+    assert m, line + proc.stderr.read()
+    return proc, m.group(1)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT])
+def test_serve_process_finishes_the_bag_on_a_signal(tmp_path, sig):
+    proc, address = _start(["serve", "--port", "0", "--out", str(tmp_path / "r"), "--sensors", "none"])
+    try:
+        with SimulationClient(address) as c:
+            assert c.set_start_time(1.6e9)
+            for k in range(6):
+                assert c.step([(k, 0.0, 0.0), (0.0, k, 90.0), (k, k, 45.0)], k * 0.1)
+    finally:
+        proc.send_signal(sig)
+        out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 0, err
+    assert "completed: 6 steps (0 refused)" in out
+    m = json.loads((tmp_path / "r" / "manifest.json").read_text())
+    assert m["completed"] is True
+    with open_bag(tmp_path / "r") as bag:
+        assert len(bag.ground_truth()["Finn"].time) == 5
+
+
+@pytest.mark.slow
+def test_record_stream_process(tmp_path):
+    proc, _address = _start(["record-stream", "--port", "0", "--out", str(tmp_path / "r")])
+    proc.send_signal(signal.SIGTERM)
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 0, err
+    assert json.loads((tmp_path / "r" / "manifest.json").read_text())["completed"] is True
+
+
+def test_serve_refuses_a_bad_ownship(tmp_path, capsys):
+    assert run(["serve", "--port", "0", "--out", str(tmp_path / "r"), "--ownship", "Nobody"]) == 2
+    assert "--ownship" in capsys.readouterr().err
+
+
+def test_serve_refuses_a_bad_port(tmp_path, capsys):
+    assert run(["serve", "--port", "99999", "--out", str(tmp_path / "r"), "--sensors", "none"]) == 2
+    assert "--port" in capsys.readouterr().err and not (tmp_path / "r").exists()

@@ -1,0 +1,123 @@
+"""SensorStreaming/Navigation: ``simulate --stream`` into a real ``record-stream`` gRPC server on loopback."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import grpc
+import numpy as np
+import pytest
+
+from seatwin.api.proto import navigation_pb2, navigation_pb2_grpc, sensorstreaming_pb2, sensorstreaming_pb2_grpc
+from seatwin.api.streaming import SensorStreamer, heading_of_quaternion, lidar_request, record_stream
+from seatwin.recording import open_bag
+
+
+def test_heading_of_quaternion():
+    # 90° about z (down): east.
+    s = math.sqrt(0.5)
+    assert heading_of_quaternion(0.0, 0.0, s, s) == pytest.approx(math.pi / 2)
+    assert heading_of_quaternion(0.0, 0.0, 0.0, 1.0) == 0.0
+
+
+def test_lidar_request_has_the_table_4_2_layout():
+    class Sweep:
+        x = np.array([1.0, 2.0], np.float32)
+        y = np.array([3.0, 4.0], np.float32)
+        z = np.array([5.0, 6.0], np.float32)
+        intensity = np.array([7.0, 8.0], np.float32)
+        ring = np.array([9, 10], np.uint16)
+        time = np.array([0.01, 0.02], np.float32)
+
+    r = lidar_request("lidar", 12.5, Sweep())
+    assert [(f.name, f.offset, f.datatype, f.count) for f in r.fields] == [
+        ("x", 0, 7, 1),
+        ("y", 4, 7, 1),
+        ("z", 8, 7, 1),
+        ("intensity", 12, 7, 1),
+        ("ring", 16, 4, 1),
+        ("time", 18, 7, 1),
+    ]
+    assert (r.point_step, r.row_step, r.width, r.height, r.isBigEndian) == (24, 48, 2, 1, False)
+    assert r.fields[0].FLOAT32 == 7 and r.fields[0].UINT16 == 4
+    assert np.frombuffer(r.data[16:18], np.uint16)[0] == 9 and np.frombuffer(r.data[0:4], np.float32)[0] == 1.0
+
+
+@pytest.mark.slow
+def test_simulate_streams_into_record_stream(tmp_path):
+    from seatwin.pipeline.simulate import simulate_run
+
+    rec = record_stream(tmp_path / "rec", port=0)
+    streamer = SensorStreamer(rec.address)
+    try:
+        res = simulate_run(
+            "ferry_crossing",
+            tmp_path / "sim",
+            duration=1.0,
+            progress=False,
+            sensors=("lidar", "radar"),
+            radar_spokes=True,
+            on_frame=streamer.on_frame,
+        )
+        channel = grpc.insecure_channel(rec.address)
+        nav = navigation_pb2_grpc.NavigationStub(channel)
+        s = math.sqrt(0.5)
+        msg = navigation_pb2.NavigationRequest(
+            timeStamp=1.6e9,
+            position=navigation_pb2.Vec3(x=10.0, y=-5.0, z=0.0),
+            orientation=navigation_pb2.Quaternion(x=0.0, y=0.0, z=s, w=s),
+            linearVelocity=navigation_pb2.Vec3(x=0.0, y=1.5, z=0.0),
+            vesselName="milliAmpere",
+        )
+        assert nav.SendNavigationMessage(msg).success
+        bad = sensorstreaming_pb2.RadarStreamingRequest(numSpokes=4, numSamples=4, radarSpokes=b"123")
+        with pytest.raises(grpc.RpcError) as e:
+            sensorstreaming_pb2_grpc.SensorStreamingStub(channel).StreamRadarSensor(bad)
+        assert e.value.code() == grpc.StatusCode.INVALID_ARGUMENT
+        channel.close()
+    finally:
+        streamer.close()
+        counts = rec.stop()
+    assert streamer.sent == {"lidar": res.frames["lidar"], "camera": 0, "radar": res.frames["radar"]} and res.frames["radar"] >= 1
+    assert counts == {"lidar": 10, "camera": 0, "radar": res.frames["radar"], "navigation": 1}
+    assert json.loads((tmp_path / "rec" / "manifest.json").read_text())["completed"] is True
+    with open_bag(tmp_path / "sim") as a, open_bag(tmp_path / "rec") as b:
+        ca, cb = list(a.point_clouds("/lidar/points")), list(b.point_clouds("/lidar/points"))
+        assert len(ca) == len(cb) == 10
+        for x, y in zip(ca, cb):
+            assert x.stamp == pytest.approx(y.stamp, abs=1e-6)
+            assert x.points.tobytes() == y.points.tobytes()
+        spokes = list(b.images("/radar/spokes"))
+        assert len(spokes) == res.frames["radar"] and spokes[0].pixels.ndim >= 2
+        truth = b.ground_truth()["milliAmpere"]
+        assert truth.north[0] == pytest.approx(10.0) and truth.heading[0] == pytest.approx(math.pi / 2, abs=1e-6)
+
+
+def test_camera_images_and_serve_stream(tmp_path):
+    """A camera frame (rgb8 on the wire) lands as the same pixels; ``serve``'s on_frame streams too."""
+    from seatwin.api.client import SimulationClient
+    from seatwin.api.server import serve
+
+    class Img:
+        name = "front"
+        bgr = np.random.default_rng(0).integers(0, 255, (4, 6, 3), dtype=np.uint8)
+
+    rec = record_stream(tmp_path / "rec", port=0)
+    streamer = SensorStreamer(rec.address)
+    try:
+        streamer.on_frame(object(), 1.6e9, 0, [Img()])
+        h = serve(tmp_path / "srv", port=0, sensors=(), on_frame=streamer.on_frame)
+        with SimulationClient(h.address) as c:
+            c.set_start_time(1.6e9)
+            for k in range(3):
+                c.step([(k, 0.0, 0.0)] * 3, k * 0.1)
+        h.stop()
+    finally:
+        streamer.close()
+        counts = rec.stop()
+    assert counts["camera"] == 1 and streamer.sent == {"lidar": 0, "camera": 1, "radar": 0}
+    with open_bag(tmp_path / "rec") as b:
+        (img,) = list(b.images("/camera/front/image_raw"))
+        px = np.asarray(img.pixels).reshape(4, 6, 3)
+        assert (px[:, :, ::-1] == Img.bgr).all() or (px == Img.bgr).all()
