@@ -28,3 +28,18 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     for item in items:
         if "shared_data" in getattr(item, "fixturenames", ()):
             item.add_marker(pytest.mark.shared_data)
+
+
+@pytest.fixture(scope="module")
+def camera_rig() -> tuple:
+    """The ferry crossing's scene, the default camera, its CameraInfo fields and a renderer (ownship not drawn)."""
+    from seatwin.render import SceneRenderer
+    from seatwin.scenario.builtin import builtin_scenario
+    from seatwin.sensors.camera import CameraConfig, camera_info_fields
+    from seatwin.world.scene import Scene
+
+    sc = builtin_scenario("ferry_crossing")
+    scene = Scene.from_scenario(sc)
+    cfg = CameraConfig()
+    info = camera_info_fields(cfg)
+    return sc, scene, cfg, info, SceneRenderer(scene, info.k, cfg.width, cfg.height, exclude=[sc.ownship.name])

@@ -9,19 +9,12 @@ import pytest
 
 from seatwin.errors import InputError
 from seatwin.render import DEBIAN_PACKAGES, SceneRenderer, projection_matrix, sun_direction
-from seatwin.scenario.builtin import builtin_scenario
-from seatwin.sensors.camera import CameraConfig, camera_info_fields, rig_mounts
-from seatwin.world.scene import Scene
+from seatwin.sensors.camera import rig_mounts
 
 
 @pytest.fixture(scope="module")
-def setup() -> tuple:
-    sc = builtin_scenario("ferry_crossing")
-    scene = Scene.from_scenario(sc)
-    cfg = CameraConfig()
-    info = camera_info_fields(cfg)
-    r = SceneRenderer(scene, info.k, cfg.width, cfg.height, exclude=[sc.ownship.name])
-    return sc, scene, cfg, info, r
+def setup(camera_rig: tuple) -> tuple:
+    return camera_rig
 
 
 def test_projection_matrix_maps_pixels_like_k() -> None:

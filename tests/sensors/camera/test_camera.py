@@ -102,13 +102,8 @@ def test_truncation_and_box_of_a_cube() -> None:
 
 
 @pytest.fixture(scope="module")
-def rig() -> tuple:
-    sc = builtin_scenario("ferry_crossing")
-    scene = Scene.from_scenario(sc)
-    cfg = CameraConfig()
-    info = camera_info_fields(cfg)
-    r = SceneRenderer(scene, info.k, cfg.width, cfg.height, exclude=[sc.ownship.name])
-    return sc, scene, cfg, info, r
+def rig(camera_rig: tuple) -> tuple:
+    return camera_rig
 
 
 def _labels_at(rig: tuple, t: float) -> list:
