@@ -20,7 +20,7 @@ def register(app: typer.Typer) -> None:
     @group.command("snapshot", help=_SNAPSHOT_HELP)
     def snapshot_cmd(
         scenario: str = typer.Argument(..., metavar="SCENARIO", help="A built-in scenario name or a scenario file."),
-        time_s: float = typer.Option(0.0, "--time", "-t", help="Seconds after the scenario's start."),
+        time_s: float = typer.Option(0.0, "--offset", "--time", "-t", help="Seconds after the scenario's start."),
         out: Path = typer.Option(..., "--out", "-o", metavar="DIR", help="Directory for left.png, front.png, right.png."),
         no_boxes: bool = typer.Option(False, "--no-boxes", help="Write the images without the boxes."),
     ) -> None:
