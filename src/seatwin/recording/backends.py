@@ -132,12 +132,12 @@ class McapScanBackend(Backend):
     last complete one. ``ros1``-encoded channels are decoded as ROS 1 messages."""
 
     def __init__(self, path: Path) -> None:
+        from seatwin.recording.mcap_check import check_mcap
+
         super().__init__(path=path, format="mcap", recovered=True)
-        with path.open("rb") as f:
-            if path.stat().st_size >= 16:
-                f.seek(-8, 2)
-                # a finished file rosbags refused (e.g. another profile): read it in full, not "recovered"
-                self.recovered = f.read(8) != b"\x89MCAP0\r\n"
+        self._layout = check_mcap(path)  # every record it lets through fits in the file (issue #14)
+        # a finished file rosbags refused (e.g. another profile): read it in full, not "recovered"
+        self.recovered = not self._layout.finished
         for topic, _, ts, _ in self._scan(None, want_data=False):
             self._count(topic, ts)
 
@@ -152,11 +152,14 @@ class McapScanBackend(Backend):
             if f.read(8) != b"\x89MCAP0\r\n":
                 raise InputError(self.path, "not an MCAP file (bad magic bytes)")
             f.seek(0)
-            records = StreamReader(f, record_size_limit=self.path.stat().st_size).records
+            end = self._layout.readable_end  # the scan never reads past the last complete record
+            stream = _Bounded(f, end)
+            records = StreamReader(stream, record_size_limit=end).records  # type: ignore[arg-type]
             while True:
                 try:
                     rec = next(records)
                 except StopIteration:
+                    self.truncated = self.truncated or self._layout.truncated
                     return
                 except (mcap.exceptions.McapError, struct.error, EOFError, ValueError, MemoryError, OSError):
                     self.truncated = True
@@ -188,6 +191,17 @@ class McapScanBackend(Backend):
 
     def messages(self, topics: set[str] | None = None) -> Iterator[RawMessage]:
         yield from self._scan(topics)
+
+
+class _Bounded:
+    """A read-only view of a file's first ``end`` bytes (reads past it return ``b""``)."""
+
+    def __init__(self, f: Any, end: int) -> None:
+        self.f, self.end = f, end
+
+    def read(self, n: int = -1) -> bytes:
+        left = max(self.end - self.f.tell(), 0)
+        return self.f.read(left if n is None or n < 0 else min(n, left))
 
 
 def rollback_sqlite_journal(db: Path) -> bool:

@@ -28,6 +28,7 @@ from seatwin.recording import backends as B
 from seatwin.recording.config import TopicConfig, ros_name
 from seatwin.recording.images import decode_compressed, image_to_array
 from seatwin.recording.manifest import read_manifest
+from seatwin.recording.mcap_check import check_mcap
 from seatwin.recording.messages import StaticTransform
 from seatwin.recording.pointcloud import unpack
 
@@ -173,6 +174,9 @@ def _open_backend(bag: Path, fmt: str) -> B.Backend:
         raise InputError(bag, f"unsupported rosbag2 storage {fmt!r}; expected mcap or sqlite3")
     storage = [bag] if bag.is_file() else sorted(bag.glob("*.mcap" if fmt == "mcap" else "*.db3"))
     journaled = fmt == "sqlite3" and any(B.rollback_sqlite_journal(db) for db in storage)
+    if fmt == "mcap":
+        for f in storage:
+            check_mcap(f)  # before any MCAP reader trusts a length field (issue #14)
     if bag.is_dir() and (bag / "metadata.yaml").exists() and not journaled:
         try:
             return B.RosbagsBackend(bag, fmt)

@@ -1,0 +1,196 @@
+"""Structural pre-check of an MCAP file before any MCAP reader (rosbags, ``mcap``) touches it.
+
+The readers trust the length fields in the file: CPython's ``file.read(n)`` allocates ``n`` bytes
+before it reads, so one forged ``u64`` asks for gigabytes (issue #14). This check reads only
+fixed-size headers (at most a few dozen bytes per record, with ``seek``) and never allocates from
+a length it read; it verifies (https://mcap.dev/spec):
+
+* the magic ``\\x89MCAP0\\r\\n`` at the start;
+* every top-level record (opcode u8, length u64, content) of the data section ends before the
+  summary section (or the footer, or the end of the file);
+* the footer's ``summary_start`` and ``summary_offset_start`` lie inside the file, before the
+  footer;
+* every summary record ends before the footer; each Chunk Index points inside the data section
+  (``chunk_start_offset + chunk_length <= summary_start``), its compressed bytes inside its chunk
+  and its ``uncompressed_size`` under :data:`MAX_UNCOMPRESSED`;
+* each Chunk record's ``records`` length fits in the record and its ``uncompressed_size`` is under
+  :data:`MAX_UNCOMPRESSED` (the readers allocate it when they decompress the chunk).
+
+A file without the end magic is unfinished (SIGKILL, full disk): its first record whose header or
+content runs past the end of the file (or whose opcode is the invalid 0x00, as a zero-filled tail
+has) is the truncation point; :attr:`McapLayout.readable_end` is where the recovery scan stops.
+Violations raise ``InputError(path, "corrupt MCAP: <record> at byte <offset>: <field> <value>
+exceeds <limit>")``.
+"""
+
+from __future__ import annotations
+
+import struct
+from dataclasses import dataclass
+from pathlib import Path
+from typing import BinaryIO
+
+from seatwin.errors import InputError
+
+MAGIC = b"\x89MCAP0\r\n"
+MAX_UNCOMPRESSED = 1 << 30
+"""Largest ``uncompressed_size`` of a chunk accepted (1 GiB): the readers allocate it when they
+decompress; our writer closes chunks far below it (one point cloud is a few MB)."""
+
+_FOOTER_LEN = 9 + 20 + 8  # footer record (opcode, length, content) + end magic
+_OP_FOOTER, _OP_CHUNK, _OP_CHUNK_INDEX = 0x02, 0x06, 0x08
+_NAMES = {
+    0x01: "Header",
+    0x02: "Footer",
+    0x03: "Schema",
+    0x04: "Channel",
+    0x05: "Message",
+    0x06: "Chunk",
+    0x07: "Message Index",
+    0x08: "Chunk Index",
+    0x09: "Attachment",
+    0x0A: "Attachment Index",
+    0x0B: "Statistics",
+    0x0C: "Metadata",
+    0x0D: "Metadata Index",
+    0x0E: "Summary Offset",
+    0x0F: "Data End",
+}
+_U32 = struct.Struct("<I")
+_U64 = struct.Struct("<Q")
+_HEAD = struct.Struct("<BQ")
+
+
+@dataclass(frozen=True)
+class McapLayout:
+    size: int
+    finished: bool
+    """The file ends in the magic bytes after a well-formed footer."""
+    data_end: int
+    """End of the data section (``summary_start``, the footer, or the end of an unfinished file)."""
+    readable_end: int
+    """End of the last complete top-level record (the whole file when finished)."""
+    truncated: bool
+    """An unfinished file whose last record is cut off (or followed by junk)."""
+
+
+def _name(op: int) -> str:
+    return _NAMES.get(op, f"record 0x{op:02x}")
+
+
+class _Checker:
+    def __init__(self, path: Path, f: BinaryIO, size: int) -> None:
+        self.path, self.f, self.size = path, f, size
+
+    def fail(self, what: str, at: int, field: str, value: int, limit: int) -> InputError:
+        return InputError(self.path, f"corrupt MCAP: {what} at byte {at}: {field} {value} exceeds {limit}")
+
+    def read(self, at: int, n: int) -> bytes:
+        """Exactly ``n`` bytes (a small constant) at ``at``; short only at the end of the file."""
+        self.f.seek(at)
+        return self.f.read(n)
+
+    def head(self, at: int) -> tuple[int, int] | None:
+        raw = self.read(at, 9)
+        return _HEAD.unpack(raw) if len(raw) == 9 else None
+
+    def chunk(self, at: int, length: int) -> None:
+        """A Chunk record's fixed fields against its record length."""
+        body = at + 9
+        fixed = self.read(body, 32)  # start, end, uncompressed_size, crc, compression length
+        if len(fixed) < 32 or length < 40:
+            raise self.fail("Chunk", at, "fixed fields of", 40, length)
+        (usize,) = _U64.unpack_from(fixed, 16)
+        (clen,) = _U32.unpack_from(fixed, 28)
+        if clen > length - 40:
+            raise self.fail("Chunk", at, "compression length", clen, length - 40)
+        raw = self.read(body + 32 + clen, 8)
+        (rlen,) = _U64.unpack(raw)
+        if rlen > length - 40 - clen:
+            raise self.fail("Chunk", at, "records length", rlen, length - 40 - clen)
+        if usize > MAX_UNCOMPRESSED:
+            raise self.fail("Chunk", at, "uncompressed_size", usize, MAX_UNCOMPRESSED)
+
+    def chunk_index(self, at: int, length: int, data_end: int) -> None:
+        body, end = at + 9, at + 9 + length
+        fixed = self.read(body, 36)  # times, chunk_start_offset, chunk_length, map byte length
+        if len(fixed) < 36 or length < 36:
+            raise self.fail("Chunk Index", at, "fixed fields of", 36, length)
+        _, _, start, clength, maplen = struct.unpack("<QQQQI", fixed)
+        if start > data_end:
+            raise self.fail("Chunk Index", at, "chunk_start_offset", start, data_end)
+        if start + clength > data_end:
+            raise self.fail("Chunk Index", at, "chunk_start_offset + chunk_length", start + clength, data_end)
+        pos = body + 36 + maplen
+        if pos + 12 > end:
+            raise self.fail("Chunk Index", at, "message_index_offsets length", maplen, max(end - body - 48, 0))
+        raw = self.read(pos, 12)  # message_index_length, compression length
+        (comp_len,) = _U32.unpack_from(raw, 8)
+        pos += 12 + comp_len
+        if pos + 16 > end:
+            raise self.fail("Chunk Index", at, "compression length", comp_len, max(end - pos + comp_len - 16, 0))
+        csize, usize = struct.unpack("<QQ", self.read(pos, 16))
+        room = max(clength - 9 - 40 - comp_len, 0)
+        if csize > room:
+            raise self.fail("Chunk Index", at, "compressed_size", csize, room)
+        if usize > MAX_UNCOMPRESSED:
+            raise self.fail("Chunk Index", at, "uncompressed_size", usize, MAX_UNCOMPRESSED)
+
+    def walk(self, start: int, end: int, unfinished: bool, data_end: int) -> tuple[int, bool]:
+        """Top-level records in ``[start, end)``; (end of the last complete record, truncated)."""
+        pos = start
+        while pos < end:
+            h = self.head(pos)
+            if h is None or pos + 9 > end:
+                if unfinished:
+                    return pos, True
+                raise self.fail("record header", pos, "end", pos + 9, end)
+            op, length = h
+            if unfinished and op == 0:
+                return pos, True
+            if length > end - pos - 9:
+                if unfinished:
+                    return pos, True
+                raise self.fail(_name(op), pos, "length", length, end - pos - 9)
+            if op == _OP_CHUNK:
+                self.chunk(pos, length)
+            elif op == _OP_CHUNK_INDEX:
+                self.chunk_index(pos, length, data_end)
+            pos += 9 + length
+        return pos, False
+
+
+def check_mcap(path: str | Path) -> McapLayout:
+    """Check ``path``'s record structure (see the module docstring); raise :class:`InputError` if broken."""
+    path = Path(path)
+    try:
+        size = path.stat().st_size
+        f = path.open("rb")
+    except OSError as exc:
+        raise InputError(path, f"cannot open MCAP file: {exc.strerror or exc}") from None
+    with f:
+        if f.read(8) != MAGIC:
+            raise InputError(path, "not an MCAP file (bad magic bytes)")
+        c = _Checker(path, f, size)
+        footer_at = size - _FOOTER_LEN
+        finished = footer_at >= 8 and c.read(size - 8, 8) == MAGIC
+        if not finished:
+            end, truncated = c.walk(8, size, True, size)
+            return McapLayout(size, False, size, end, truncated)
+        raw = c.read(footer_at, 29)
+        op, length, summary_start, summary_offset_start = struct.unpack_from("<BQQQ", raw)
+        if op != _OP_FOOTER:
+            raise InputError(path, f"corrupt MCAP: Footer at byte {footer_at}: opcode 0x{op:02x} is not 0x02")
+        if length != 20:
+            raise c.fail("Footer", footer_at, "length", length, 20)
+        if summary_start > footer_at:
+            raise c.fail("Footer", footer_at, "summary_start", summary_start, footer_at)
+        if summary_offset_start > footer_at:
+            raise c.fail("Footer", footer_at, "summary_offset_start", summary_offset_start, footer_at)
+        if summary_start and summary_start < 8:
+            raise InputError(path, f"corrupt MCAP: Footer at byte {footer_at}: summary_start {summary_start} < 8")
+        data_end = summary_start or footer_at
+        c.walk(8, data_end, False, data_end)
+        if summary_start:
+            c.walk(summary_start, footer_at, False, data_end)
+        return McapLayout(size, True, data_end, size, False)
