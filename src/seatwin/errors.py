@@ -9,7 +9,14 @@ never command-line flags; the CLI maps a parameter to its flag (``--duration``) 
 
 from __future__ import annotations
 
+import csv
+import io
+from collections.abc import Callable, Iterator
 from os import PathLike
+from pathlib import Path
+from typing import TypeVar
+
+T = TypeVar("T")
 
 
 class InputError(ValueError):
@@ -49,3 +56,24 @@ def parse_finite(text: str, source: str | PathLike[str] | None, field: str, line
     if value != value or value in (float("inf"), float("-inf")):
         raise InputError(source, f"expected a finite number for {field}, got {text!r}", where=where)
     return value
+
+
+def read_text(path: str | PathLike[str], expected: str, encoding: str = "utf-8") -> str:
+    """The text of ``path``, or one :class:`InputError`: it cannot be opened, or is not ``encoding`` text
+    (``expected`` says what the file should be, e.g. "a track file")."""
+    try:
+        return Path(path).read_text(encoding=encoding)
+    except OSError as exc:
+        raise InputError(path, f"cannot open: {exc.strerror or exc}") from None
+    except UnicodeDecodeError as exc:
+        name = "ASCII" if encoding == "ascii" else "UTF-8"
+        raise InputError(path, f"not {name} text ({exc.reason} at byte {exc.start}); expected {expected}") from None
+
+
+def parse_csv(path: str | PathLike[str], text: str, parse: Callable[[Iterator[list[str]]], T]) -> T:
+    """``parse(reader)`` over the CSV ``text``; the csv module's own errors become an :class:`InputError` with the line."""
+    reader = csv.reader(io.StringIO(text, newline=""))
+    try:
+        return parse(reader)
+    except csv.Error as exc:
+        raise InputError(path, f"malformed CSV: {exc}", where=f"line {reader.line_num}") from None

@@ -14,7 +14,6 @@ scan time without a track row.
 from __future__ import annotations
 
 import csv
-import io
 import os
 import warnings
 from collections.abc import Iterator
@@ -24,7 +23,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from seatwin.errors import InputError, parse_finite
+from seatwin.errors import InputError, parse_csv, parse_finite, read_text
 
 STATE_NAMES: tuple[str, ...] = ("north", "v_north", "east", "v_east")
 """State order of (5.32): the thesis's ``[Pos_x, Vel_x, Pos_y, Vel_y]`` with x north, y east."""
@@ -163,17 +162,8 @@ def write_tracks(path: str | os.PathLike[str], tracks: Tracks) -> None:
 def read_tracks(path: str | os.PathLike[str]) -> Tracks:
     """Read a track file; an :class:`InputError` names the file, line and column of any bad value."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except OSError as exc:
-        raise InputError(path, f"cannot open track file: {exc.strerror}") from None
-    except UnicodeDecodeError as exc:
-        raise InputError(path, f"not UTF-8 text ({exc.reason} at byte {exc.start}); expected a track file") from None
-    reader = csv.reader(io.StringIO(text, newline=""))
-    try:
-        return _read_rows(path, reader)
-    except csv.Error as exc:
-        raise InputError(path, f"malformed CSV: {exc}", where=f"line {reader.line_num}") from None
+    text = read_text(path, "a track file", encoding="utf-8-sig")
+    return parse_csv(path, text, lambda reader: _read_rows(path, reader))
 
 
 def _read_rows(path: Path, reader: Iterator[list[str]]) -> Tracks:

@@ -9,13 +9,12 @@ Times are POSIX seconds or ISO 8601 (a time without zone is taken as UTC). Lat/l
 
 from __future__ import annotations
 
-import csv
 import datetime as dt
 from pathlib import Path
 
 import numpy as np
 
-from seatwin.errors import InputError
+from seatwin.errors import InputError, parse_csv, read_text
 from seatwin.groundtruth.log import AntennaLog
 
 _NAMES = {
@@ -53,15 +52,7 @@ def _looks_like_data(cell: str) -> bool:
 def read_csv_log(path: str | Path) -> AntennaLog:
     """Read a generic CSV antenna log (see the module docstring)."""
     path = Path(path)
-    try:
-        with path.open(newline="", encoding="utf-8") as handle:
-            rows = list(csv.reader(handle))
-    except OSError as exc:
-        raise InputError(path, f"cannot open: {exc.strerror}") from None
-    except UnicodeDecodeError as exc:
-        raise InputError(path, f"not UTF-8 text (byte {exc.start}); expected a CSV file") from None
-    except csv.Error as exc:
-        raise InputError(path, f"malformed CSV: {exc}") from None
+    rows = parse_csv(path, read_text(path, "a CSV file"), list)
     numbered = [(i, r) for i, r in enumerate(rows, start=1) if r and any(c.strip() for c in r)]
     if not numbered:
         raise InputError(path, "empty file, expected time, lat, lon[, height] lines")

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from seatwin.errors import InputError
+from seatwin.errors import InputError, read_text
 from seatwin.groundtruth.log import AntennaLog
 
 _TRKPT = re.compile(r"<(?:\w+:)?trkpt\b")
@@ -30,12 +30,7 @@ def read_gpx(path: str | Path) -> AntennaLog:
     import gpxpy.gpx
 
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise InputError(path, f"cannot open: {exc.strerror}") from None
-    except UnicodeDecodeError as exc:
-        raise InputError(path, f"not UTF-8 text ({exc.reason} at byte {exc.start}); expected a GPX file") from None
+    text = read_text(path, "a GPX file")
     try:
         gpx = gpxpy.parse(text)
     except gpxpy.gpx.GPXXMLSyntaxException as exc:

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from seatwin.errors import InputError, parse_finite
+from seatwin.errors import InputError, parse_finite, read_text
 from seatwin.groundtruth.log import AntennaLog
 
 _SENTENCE = re.compile(r"^\$([A-Z]{2})([A-Z]{3}),")
@@ -94,14 +94,7 @@ def _date(day: int, month: int, year: int, path: Path, line_no: int) -> float:
 def read_nmea(path: str | Path, date: dt.date | None = None) -> AntennaLog:
     """Read GGA fixes from an NMEA 0183 log. ``date`` (UTC) is used only if the file has no RMC/ZDA."""
     path = Path(path)
-    try:
-        handle = path.open(encoding="ascii", errors="strict", newline="")
-        text_lines = handle.read().splitlines()
-        handle.close()
-    except OSError as exc:
-        raise InputError(path, f"cannot open: {exc.strerror}") from None
-    except UnicodeDecodeError as exc:
-        raise InputError(path, f"not ASCII text (byte {exc.start}); expected NMEA 0183 sentences") from None
+    text_lines = read_text(path, "NMEA 0183 sentences", encoding="ascii").splitlines()
 
     # Fixes as (time of day, lat, lon, height, quality, line, index of the dating sentence before it).
     fixes: list[tuple[float, float, float, float, int, int, int]] = []

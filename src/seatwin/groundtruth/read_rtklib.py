@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from seatwin.errors import InputError, parse_finite
+from seatwin.errors import InputError, parse_finite, read_text
 from seatwin.groundtruth.gpstime import GPS_EPOCH_POSIX, gps_week_to_posixlike, gpst_to_utc
 from seatwin.groundtruth.log import AntennaLog
 
@@ -70,12 +70,7 @@ def _dms(toks: list[str], name: str, path: Path, line_no: int) -> float:
 def read_rtklib_pos(path: str | Path) -> AntennaLog:
     """Read an RTKLIB ``.pos`` solution file (llh) into an :class:`AntennaLog` (UTC times)."""
     path = Path(path)
-    try:
-        text_lines = path.read_text(encoding="utf-8", errors="strict").splitlines()
-    except OSError as exc:
-        raise InputError(path, f"cannot open: {exc.strerror}") from None
-    except UnicodeDecodeError as exc:
-        raise InputError(path, f"not text (byte {exc.start}); expected an RTKLIB .pos file") from None
+    text_lines = read_text(path, "an RTKLIB .pos file").splitlines()
     system, dms = "GPST", False
     rows: list[tuple[float, float, float, float, int, int]] = []
     for line_no, raw in enumerate(text_lines, start=1):

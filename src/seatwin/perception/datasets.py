@@ -13,9 +13,7 @@ radar clouds, ground truth as the recording's pose/odometry topics; the manifest
 
 from __future__ import annotations
 
-import csv
 import datetime as dt
-import io
 import math
 import os
 import struct
@@ -27,7 +25,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from seatwin.errors import InputError
+from seatwin.errors import InputError, parse_csv, read_text
 
 Array = NDArray[np.float64]
 
@@ -199,17 +197,8 @@ def read_ravnkloa_radar(path: str | os.PathLike[str]) -> RadarDataset:
         start = dt.datetime.strptime(p.stem, "%Y-%m-%d-%H-%M-%S").replace(tzinfo=dt.UTC).timestamp()
     except ValueError:
         raise InputError(p, "expected a file name YYYY-MM-DD-HH-MM-SS.csv (the recording start)") from None
-    try:
-        text = p.read_text(encoding="utf-8-sig")
-    except OSError as exc:
-        raise InputError(p, f"cannot open: {exc.strerror}") from None
-    except UnicodeDecodeError as exc:
-        raise InputError(p, f"not UTF-8 text ({exc.reason} at byte {exc.start}); expected a radar CSV") from None
-    reader = csv.reader(io.StringIO(text, newline=""))
-    try:
-        rows = _radar_rows(p, reader)
-    except csv.Error as exc:
-        raise InputError(p, f"malformed CSV: {exc}", where=f"line {reader.line_num}") from None
+    text = read_text(p, "a radar CSV", encoding="utf-8-sig")
+    rows = parse_csv(p, text, lambda reader: _radar_rows(p, reader))
     if not rows:
         raise InputError(p, "no radar detections in the file")
     a = np.array(rows)

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import csv
 import datetime as dt
-import io
 import os
 import re
 from collections.abc import Iterator
@@ -17,7 +16,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from seatwin.errors import InputError, ParameterError
+from seatwin.errors import InputError, ParameterError, parse_csv, read_text
 from seatwin.geo import deg_to_rad_heading, rad_to_deg_heading
 from seatwin.scenario.model import Trajectory
 
@@ -50,17 +49,8 @@ def read_gemini_csv(
     """
     check_max_speed(max_speed)
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except OSError as exc:
-        raise InputError(path, f"cannot open: {exc.strerror}") from None
-    except UnicodeDecodeError as exc:
-        raise InputError(path, f"not UTF-8 text ({exc.reason} at byte {exc.start}); expected a Gemini CSV") from None
-    reader = csv.reader(io.StringIO(text, newline=""))
-    try:
-        return _read_rows(path, reader, date, max_speed)
-    except csv.Error as exc:
-        raise InputError(path, f"malformed CSV: {exc}", where=f"line {reader.line_num}") from None
+    text = read_text(path, "a Gemini CSV", encoding="utf-8-sig")
+    return parse_csv(path, text, lambda reader: _read_rows(path, reader, date, max_speed))
 
 
 def check_max_speed(max_speed: float) -> None:

@@ -29,7 +29,7 @@ from typing import Annotated, Any, Literal
 import yaml
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
 
-from seatwin.errors import InputError
+from seatwin.errors import InputError, read_text
 from seatwin.geo import GeodeticOrigin
 from seatwin.scenario.defaults import RAVNKLOA
 from seatwin.scenario.gemini_csv import MAX_SPEED, check_max_speed, read_gemini_csv, write_gemini_csv
@@ -101,12 +101,7 @@ def _field(loc: tuple[Any, ...]) -> str:
 
 def parse_spec(path: Path) -> ScenarioSpec:
     """Read and validate a scenario YAML; :class:`InputError` names the file, line or field."""
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise InputError(path, f"cannot read: {exc.strerror}") from None
-    except UnicodeDecodeError as exc:
-        raise InputError(path, f"not UTF-8 text ({exc.reason} at byte {exc.start})") from None
+    text = read_text(path, "a scenario YAML file")
     try:
         data = yaml.safe_load(text)
     except yaml.YAMLError as exc:
