@@ -24,20 +24,13 @@ def register(app: typer.Typer) -> None:
         radar spokes → /radar/spokes (mono8, a row per spoke), navigation → /ground_truth/<vessel>/...
         Ctrl-C or SIGTERM finishes the bag (manifest completed: true).
         """
-        import signal
-        import threading
-
         from seatwin.api.streaming import record_stream
+        from seatwin.cli.output import wait_for_sigint_or_sigterm
 
         handle = record_stream(out, port=port, host=host, fmt=fmt.value, ownship=ownship)
-        stop = threading.Event()
-        previous = {s: signal.signal(s, lambda *_: stop.set()) for s in (signal.SIGINT, signal.SIGTERM)}
         typer.echo(f"serving SensorStreaming + Navigation on {handle.address}; recording into {out} (Ctrl-C to finish)")
         try:
-            while not stop.wait(0.2):
-                pass
+            wait_for_sigint_or_sigterm()
         finally:
             counts = handle.stop()
-            for s, h in previous.items():
-                signal.signal(s, h)
         typer.echo(f"completed: recorded {counts}; recording in {out}")

@@ -43,11 +43,8 @@ def register(app: typer.Typer) -> None:
         loop and records as `seatwin simulate` does, then answers (lock-step). Ctrl-C or SIGTERM
         finishes the bag (manifest completed: true).
         """
-        import signal
-        import threading
-
         from seatwin.api.server import serve
-        from seatwin.cli.output import split_list
+        from seatwin.cli.output import split_list, wait_for_sigint_or_sigterm
 
         sensor_list = split_list(sensors, "sensors") or ()
         streamer = None
@@ -60,7 +57,7 @@ def register(app: typer.Typer) -> None:
             port=port,
             host=host,
             seed=seed,
-            vessels=split_list(vessels, "--vessels"),
+            vessels=split_list(vessels, "vessels"),
             ownship=ownship,
             sensors=() if sensor_list == ("none",) else sensor_list,
             lidar_mode=lidar_mode.value,
@@ -69,18 +66,13 @@ def register(app: typer.Typer) -> None:
             radar_spokes=streamer is not None,
             on_frame=streamer.on_frame if streamer is not None else None,
         )
-        stop = threading.Event()
-        previous = {s: signal.signal(s, lambda *_: stop.set()) for s in (signal.SIGINT, signal.SIGTERM)}
         typer.echo(f"serving GeminiOSPInterface.Simulation on {handle.address}; recording into {out} (Ctrl-C to finish)")
         try:
-            while not stop.wait(0.2):
-                pass
+            wait_for_sigint_or_sigterm()
         finally:
             result = handle.stop()
             if streamer is not None:
                 streamer.close()
-            for s, h in previous.items():
-                signal.signal(s, h)
         typer.echo(
             f"completed: {handle.servicer.steps} steps ({handle.servicer.rejected} refused), "
             f"{result.simulated_s:.1f} s simulated; frames {result.frames}; recording in {result.run_dir}"
