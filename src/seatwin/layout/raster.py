@@ -27,12 +27,13 @@ class LandRaster:
     resolution: float = 1.0
     source: str = "<memory>"
 
-    def is_water(self, north: np.ndarray, east: np.ndarray) -> np.ndarray:
-        """True where (north, east) falls on a water cell (outside the grid counts as water)."""
-        r = np.floor((np.asarray(north) - self.origin_north) / self.resolution).astype(int)
-        c = np.floor((np.asarray(east) - self.origin_east) / self.resolution).astype(int)
+    def is_water(self, north: np.ndarray, east: np.ndarray, outside: bool = True) -> np.ndarray:
+        """True where (north, east) falls on a water cell; points outside the grid count as ``outside``
+        (water for building a harbour, land for masking sensor returns)."""
+        r = np.floor((np.asarray(north, float) - self.origin_north) / self.resolution).astype(np.int64)
+        c = np.floor((np.asarray(east, float) - self.origin_east) / self.resolution).astype(np.int64)
         inside = (r >= 0) & (r < self.water.shape[0]) & (c >= 0) & (c < self.water.shape[1])
-        out = np.ones(np.broadcast(r, c).shape, dtype=bool)
+        out = np.full(np.broadcast(r, c).shape, outside, dtype=bool)
         out[inside] = self.water[r[inside], c[inside]]
         return out
 
@@ -46,7 +47,7 @@ def read_land_raster(path: str | Path) -> LandRaster:
     meta_path, bin_path = p.with_suffix(".yaml"), p.with_suffix(".bin")
     for q in (meta_path, bin_path):
         if not q.is_file():
-            raise InputError(q, "raster file not found (a land raster is a .bin with a .yaml beside it)")
+            raise InputError(q, "map raster file not found (a map raster is NAME.yaml and NAME.bin side by side)")
     try:
         meta = yaml.safe_load(meta_path.read_text())
     except yaml.YAMLError as exc:
@@ -59,7 +60,7 @@ def read_land_raster(path: str | Path) -> LandRaster:
     res = float(meta.get("grid_resolution", 1.0))
     data = np.fromfile(bin_path, dtype=np.uint8)
     if data.size != w * h:
-        raise InputError(bin_path, f"holds {data.size} bytes, expected map_width × map_height = {w} × {h} = {w * h}")
+        raise InputError(bin_path, f"holds {data.size} bytes, expected map_width × map_height = {w} × {h} = {w * h} bytes")
     bad = np.flatnonzero(data > 1)
     if bad.size:
         raise InputError(bin_path, f"cell values must be 0 (land) or 1 (water), got {data[bad[0]]}", where=f"byte {bad[0]}")

@@ -2,10 +2,8 @@
 
 * :class:`LayoutMask` — the built-in harbour (:data:`seatwin.layout.DEFAULT_LAYOUT`),
   vectorised.
-* :class:`RasterMask` — a land/water raster in the Ravnkloa base-map format: ``NAME.yaml``
-  (``map_width``, ``map_height``, ``grid_resolution``, ``origin_x_coordinate`` = east of
-  column 0, ``origin_y_coordinate`` = north of row 0) beside ``NAME.bin`` (uint8, row-major,
-  1 = water, 0 = land; row 0 the southern edge). Points outside the raster count as land.
+* :class:`RasterMask` — a land/water raster in the Ravnkloa base-map format, read by
+  :func:`seatwin.layout.read_land_raster`. Points outside the raster count as land.
 * :func:`load_mask` — ``harbour``, ``none`` or a raster's ``.yaml``/``.bin`` path.
 """
 
@@ -15,11 +13,10 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-import yaml
 from numpy.typing import ArrayLike, NDArray
 
-from seatwin.errors import InputError
 from seatwin.layout import DEFAULT_LAYOUT, HarbourLayout
+from seatwin.layout.raster import LandRaster, read_land_raster
 
 
 class NoMask:
@@ -41,47 +38,22 @@ class LayoutMask:
 
 @dataclass(frozen=True)
 class RasterMask:
-    """A 1-bit land/water raster (see the module docstring)."""
+    """A land/water raster (:class:`seatwin.layout.LandRaster`) as a mask: outside the raster is land."""
 
-    water: NDArray[np.bool_]
-    """(rows, cols); row 0 is the southern edge."""
-    origin_north: float
-    origin_east: float
-    resolution: float
+    raster: LandRaster
 
     @classmethod
     def load(cls, path: str | Path) -> RasterMask:
-        """Load ``NAME.yaml`` + ``NAME.bin`` (either path may be given)."""
-        p = Path(path)
-        meta_path, bin_path = p.with_suffix(".yaml"), p.with_suffix(".bin")
-        for q in (meta_path, bin_path):
-            if not q.is_file():
-                raise InputError(q, "map raster needs NAME.yaml and NAME.bin side by side; this file is missing")
-        try:
-            meta = yaml.safe_load(meta_path.read_text())
-            w, h = int(meta["map_width"]), int(meta["map_height"])
-            res = float(meta.get("grid_resolution", 1.0))
-            on, oe = float(meta["origin_y_coordinate"]), float(meta["origin_x_coordinate"])
-        except (yaml.YAMLError, KeyError, TypeError, ValueError) as exc:
-            raise InputError(
-                meta_path,
-                f"expected map_width, map_height, grid_resolution, origin_x_coordinate, "
-                f"origin_y_coordinate ({type(exc).__name__}: {exc})",
-            ) from None
-        data = np.fromfile(bin_path, dtype=np.uint8)
-        if data.size != w * h:
-            raise InputError(bin_path, f"expected {w}×{h} = {w * h} bytes (from {meta_path.name}), found {data.size}")
-        return cls(data.reshape(h, w) == 1, on, oe, res)
+        """Load ``NAME.yaml`` + ``NAME.bin`` (either path may be given) with :func:`seatwin.layout.read_land_raster`."""
+        return cls(read_land_raster(path))
+
+    @property
+    def water(self) -> NDArray[np.bool_]:
+        """(rows, cols); row 0 is the southern edge."""
+        return self.raster.water
 
     def is_water(self, north: ArrayLike, east: ArrayLike) -> NDArray[np.bool_]:
-        n, e = np.broadcast_arrays(np.asarray(north, float), np.asarray(east, float))
-        r = np.floor((n - self.origin_north) / self.resolution).astype(np.int64)
-        c = np.floor((e - self.origin_east) / self.resolution).astype(np.int64)
-        rows, cols = self.water.shape
-        inside = (r >= 0) & (r < rows) & (c >= 0) & (c < cols)
-        out = np.zeros(n.shape, dtype=bool)
-        out[inside] = self.water[r[inside], c[inside]]
-        return out
+        return self.raster.is_water(north, east, outside=False)
 
 
 WaterMask = NoMask | LayoutMask | RasterMask
