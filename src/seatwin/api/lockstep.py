@@ -30,7 +30,7 @@ from numpy.typing import NDArray
 from pydantic import Field
 
 from seatwin.errors import InputError, ParameterError
-from seatwin.geo import ned_to_llh_exact, unwrap, wrap_to_pi
+from seatwin.geo import unwrap, wrap_to_pi
 from seatwin.recording import VesselPose
 from seatwin.recording.manifest import MANIFEST_NAME
 from seatwin.scenario import Role, Scenario, Trajectory, Vessel
@@ -110,32 +110,9 @@ class _LiveGroundTruth(GroundTruthSensor):
     def frame_times(self, t0: float, t1: float) -> NDArray[np.float64]:
         times = super(GroundTruthSensor, self).frame_times(t0, t1)  # Periodic's
         new = times[self._offset :]
-        self._table = self._lean_table(new) if len(new) else None
+        self._table = PoseTable.from_scenario(self.scenario, new) if len(new) else None
         self._start_index, self._offset = self._offset, len(times)
         return times
-
-    def _lean_table(self, tt: NDArray[np.float64]) -> PoseTable:
-        """:meth:`PoseTable.from_scenario` of live trajectories: the same interpolation, without the span checks."""
-        origin = self.scenario.origin
-        names, own, states, llh = [], [], [], []
-        for v in self.scenario.vessels:
-            tr = v.trajectory
-            if tt[0] < tr.start - 1e-6 or tt[-1] > tr.end + 1e-6:
-                tr.state_at(tt)  # raises, naming the span
-            cols = [np.interp(tt, tr.time, a) for a in (tr.north, tr.east, tr._heading_unwrapped)]  # noqa: SLF001
-            cols[2] = np.asarray(wrap_to_pi(cols[2]), float)
-            cols += [np.interp(tt, tr.time, a) for a in (tr._v_north, tr._v_east, tr._yaw_rate)]  # noqa: SLF001
-            st = np.column_stack(cols)
-            is_own = v.role == Role.OWNSHIP
-            names.append(v.name)
-            own.append(is_own)
-            states.append(st)
-            if is_own and origin is not None:
-                lat, lon, h = ned_to_llh_exact(st[:, 0], st[:, 1], np.zeros(len(tt)), origin)
-                llh.append(np.column_stack([np.broadcast_to(a, tt.shape) for a in (lat, lon, h)]))
-            else:
-                llh.append(None)
-        return PoseTable(tt, tuple(names), tuple(own), tuple(states), tuple(llh))
 
     def capture(self, t: float, frame: int) -> list[VesselPose]:
         table, k = self._table, frame - getattr(self, "_start_index", 0)
