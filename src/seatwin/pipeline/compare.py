@@ -189,15 +189,17 @@ def compare_runs(
         clouds = (
             [] if clouds_at is None else [_clouds(real[0], synthetic[0], clouds_at, clouds_sensor, truth_set, clouds_relative)]
         )
-        notes = [f"“Real” dataset: {describe_dataset(r)}. “Synthetic” dataset: {describe_dataset(s)}." for r, s, _, _ in pairs]
-        if any(describe_dataset(r).startswith("simulated") for r, *_ in pairs):
+        name = scenario_name(truth)
+        described = [(describe_dataset(r), describe_dataset(s)) for r, s, _, _ in pairs]
+        notes = [f"“Real” dataset: {r}. “Synthetic” dataset: {s}." for r, s in described]
+        if any(r.startswith("simulated") for r, _ in described):
             notes.append("The “real” side here is itself simulated: this compares two sensor models, not reality.")
         result.report = write_comparison_report(
             report_dir,
             comparisons,
             truth_set,
-            title=f"seatwin compare — {scenario_name(truth)}",
-            scenario=scenario_name(truth),
+            title=f"seatwin compare — {name}",
+            scenario=name,
             mask=load_mask(report_map),
             clouds=clouds,
             notes=notes,

@@ -28,17 +28,15 @@ def check_overlap(tracks: Tracks, truth: TruthSet, source: str) -> None:
 
 
 def recording_mask(spec: str | Path | None) -> object | None:
-    """The water mask a recording's manifest names (``metadata.tracking.map``), else None."""
+    """The water mask a run directory's manifest names (:func:`seatwin.pipeline.track.map_hint`), else None."""
     from seatwin.perception.map_mask import load_mask
+    from seatwin.pipeline.track import map_hint
     from seatwin.recording.manifest import read_manifest
 
     if spec is None or not Path(spec).is_dir():
         return None
-    hint = (((read_manifest(Path(spec)) or {}).get("metadata") or {}).get("tracking") or {}).get("map")
-    if hint is None:
-        return None
-    text = str(hint)
-    return load_mask(text if text in ("harbour", "none") or Path(text).is_absolute() else str(Path(spec) / text))
+    hint = map_hint(read_manifest(Path(spec)), Path(spec))
+    return None if hint is None else load_mask(hint)
 
 
 def evaluate_run(

@@ -100,8 +100,14 @@ def track_scans(
     )
 
 
-def _hint_path(value: object, run_dir: Path | None) -> str | None:
-    """A map hint from the manifest: a preset name, or a path relative to the run directory."""
+def tracking_hints(manifest: dict[str, Any] | None) -> dict[str, Any]:
+    """What a recording's manifest suggests for tracking it (``metadata.tracking``: tuning, map, radar_merge)."""
+    return ((manifest or {}).get("metadata") or {}).get("tracking") or {}
+
+
+def map_hint(manifest: dict[str, Any] | None, run_dir: Path | None) -> str | None:
+    """The manifest's water-mask hint: a preset name (harbour, none), or a raster path relative to the run directory."""
+    value = tracking_hints(manifest).get("map")
     if value is None:
         return None
     text = str(value)
@@ -146,9 +152,9 @@ def track_recording(
 
     t_start = _time.perf_counter()
     with open_bag(path) as rec:
-        hints = ((rec.manifest or {}).get("metadata") or {}).get("tracking") or {}
+        hints = tracking_hints(rec.manifest)
         cfg = load_tuning(options.tuning or hints.get("tuning") or "real")
-        mask = load_mask(options.map_spec if options.map_spec is not None else _hint_path(hints.get("map"), rec.run_dir))
+        mask = load_mask(options.map_spec if options.map_spec is not None else map_hint(rec.manifest, rec.run_dir))
         merge = options.merge_distance if options.merge_distance is not None else float(hints.get("radar_merge", 0.0))
         radar = RadarPlots(merge_distance=merge, kind=MeasurementKind(options.radar_kind))
         wanted = options.sensors

@@ -20,7 +20,6 @@ from pathlib import Path
 from typing import Any
 
 from seatwin.sim.sensors import SimSensor
-from seatwin.sim.timing import periodic_times, time_window  # noqa: F401 - re-exported
 
 
 @dataclass
