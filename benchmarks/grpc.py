@@ -7,11 +7,17 @@
 2. ``lockstep_overhead``: the lidar on (VLP-16, ray casting), ``duration`` simulated seconds driven
    step by step (10 Hz) through ``serve`` by a client in another process (as an OSP/Gemini client
    is; wall = serve's set-up + the client's stepping loop + finishing the bag) vs ``seatwin simulate``
-   (:func:`seatwin.pipeline.simulate_run`) of the same window in one call; overhead =
-   wall(serve) / wall(simulate) − 1, target ≤ 0.20. ``lockstep_inprocess_overhead``: the same with
-   the client in this process (client and server then share one interpreter lock).
+   (:func:`seatwin.pipeline.simulate_run`) of the same window in one call — apples to apples: the same
+   sensors (ground truth at 10 Hz + the lidar), seed, harbour, range model and bag format (MCAP), and
+   the same frames (``frames_equal``); overhead = wall(serve) / wall(simulate) − 1, target ≤ 0.20.
+   Its parts: ``lockstep_direct_overhead`` — :class:`~seatwin.api.lockstep.LockstepSimulation` stepped
+   in this process without gRPC (the server's own cost), and ``transport_share`` — the steps' round
+   trips to a do-nothing ``DoStep`` server from another process (``noop_xproc_per_s``), as a share of
+   ``simulate``'s wall. ``lockstep_inprocess_overhead``: ``serve`` with the client in this process
+   (client and server then share one interpreter lock).
 
-Each figure is the best of 3 runs. Bounded loops; prints JSON on the last line. ``python benchmarks/grpc.py [steps] [duration]``.
+Each figure is the best of 3 runs (interleaved). Bounded loops; prints JSON on the last line.
+``python benchmarks/grpc.py [steps] [duration]``.
 """
 
 from __future__ import annotations
@@ -78,7 +84,9 @@ def _drive_from_another_process(address: str, start: float, steps: list, tmp: Pa
     return float(out.stdout.strip().splitlines()[-1])
 
 
-def _noop_rate(start: float, steps: list) -> float:
+def _noop_rate(start: float, steps: list, tmp: Path | None = None) -> float:
+    """Round trips/s to a ``DoStep`` that does nothing (one worker thread, as ``serve``); the client in
+    this process, or in another one when ``tmp`` is given."""
     import grpc
 
     from seatwin.api.proto import gemini_osp_pb2, gemini_osp_pb2_grpc
@@ -91,15 +99,29 @@ def _noop_rate(start: float, steps: list) -> float:
         def SetStartTime(self, request: object, context: object) -> object:  # noqa: N802
             return gemini_osp_pb2.SetStartTimeResponse(success=True)
 
-    server = grpc.server(futures.ThreadPoolExecutor(max_workers=4), options=SERVER_OPTIONS)
+    server = grpc.server(futures.ThreadPoolExecutor(max_workers=1), options=SERVER_OPTIONS)
     gemini_osp_pb2_grpc.add_SimulationServicer_to_server(Noop(), server)
     port = bind(server, "127.0.0.1", 0)
     server.start()
     try:
-        wall = _drive(f"127.0.0.1:{port}", start, steps)
+        address = f"127.0.0.1:{port}"
+        wall = _drive(address, start, steps) if tmp is None else _drive_from_another_process(address, start, steps, tmp)
     finally:
         server.stop(None)
     return (len(steps) - 1) / wall
+
+
+def _direct(run_dir: Path, start: float, steps: list, settings: dict) -> float:
+    """Wall of :class:`LockstepSimulation` stepped in this process (no gRPC): set-up, steps, finishing the bag."""
+    from seatwin.api.lockstep import LockstepSettings, LockstepSimulation
+
+    t0 = time.perf_counter()
+    sim = LockstepSimulation(run_dir, LockstepSettings(**settings))
+    sim.set_start_time(repr(start))
+    for rel, poses in steps:
+        sim.step(poses, rel)
+    sim.close()
+    return time.perf_counter() - t0
 
 
 def main() -> None:
@@ -126,15 +148,18 @@ def main() -> None:
         out["gt_frames"] = res.frames.get("ground_truth", 0)
 
         start, steps = _requests(int(round(duration * 10)) + 1, offset=20.0)
-        simulate_run("ferry_crossing", tmp / "warm", start=start, duration=1.0, progress=False)  # warm-up (BVH, imports)
-        ref_walls, served_walls = [], []
+        # The same run both ways: sensors, rates, seed, harbour, range model, preset, bag format.
+        same = {"sensors": ("lidar",), "seed": 0, "harbour": "default", "lidar_mode": "raycast", "lidar_preset": "vlp16"}
+        same |= {"fmt": "mcap", "ground_truth_rate_hz": 10.0}
+        simulate_run("ferry_crossing", tmp / "warm", start=start, duration=1.0, progress=False, **same)  # warm-up (BVH, imports)
+        ref_walls, served_walls, direct_walls, inproc_walls, noop_walls = [], [], [], [], []
         for r in range(REPEATS):  # interleaved, best of each (a shared machine's load comes and goes)
             t0 = time.perf_counter()
-            ref = simulate_run("ferry_crossing", tmp / f"ref{r}", start=start, duration=duration, progress=False)
+            ref = simulate_run("ferry_crossing", tmp / f"ref{r}", start=start, duration=duration, progress=False, **same)
             ref_walls.append(time.perf_counter() - t0)
             # serve's set-up + the client's stepping loop (another process) + finishing the bag
             t0 = time.perf_counter()
-            h = serve(tmp / f"served{r}", port=0)
+            h = serve(tmp / f"served{r}", port=0, **same)
             setup = time.perf_counter() - t0
             try:
                 loop = _drive_from_another_process(h.address, start, steps, tmp)
@@ -143,21 +168,25 @@ def main() -> None:
                 served = h.stop()
                 finish = time.perf_counter() - t0
             served_walls.append(setup + loop + finish)
-        ref_wall, served_wall = min(ref_walls), min(served_walls)
-        inproc = []
-        for r in range(REPEATS):
+            direct_walls.append(_direct(tmp / f"direct{r}", start, steps, same))
             t0 = time.perf_counter()
-            h = serve(tmp / f"inproc{r}", port=0)
+            h = serve(tmp / f"inproc{r}", port=0, **same)
             try:
                 _drive(h.address, start, steps)
             finally:
                 h.stop()
-            inproc.append(time.perf_counter() - t0)
-        out["lockstep_inprocess_overhead"] = round(min(inproc) / ref_wall - 1.0, 3)
-        out["simulate_wall_s"] = round(ref_wall, 3)
-        out["lockstep_wall_s"] = round(served_wall, 3)
+            inproc_walls.append(time.perf_counter() - t0)
+            noop_walls.append((len(steps) - 1) / _noop_rate(start, steps, tmp))
+        ref_wall, served_wall = min(ref_walls), min(served_walls)
+        out["simulate_wall_s"] = round(ref_wall, 4)
+        out["lockstep_wall_s"] = round(served_wall, 4)
         out["lockstep_overhead"] = round(served_wall / ref_wall - 1.0, 3)
         out["lockstep_target_met"] = out["lockstep_overhead"] <= 0.20
+        out["lockstep_direct_wall_s"] = round(min(direct_walls), 4)
+        out["lockstep_direct_overhead"] = round(min(direct_walls) / ref_wall - 1.0, 3)
+        out["noop_xproc_per_s"] = round((len(steps) - 1) / min(noop_walls), 1)
+        out["transport_share"] = round(min(noop_walls) / ref_wall, 3)
+        out["lockstep_inprocess_overhead"] = round(min(inproc_walls) / ref_wall - 1.0, 3)
         out["frames_equal"] = served.frames == ref.frames
         out["frames"] = served.frames
     print(json.dumps(out))

@@ -8,9 +8,9 @@ file's mapping, raises an :class:`InputError` naming the file and field instead.
 from __future__ import annotations
 
 from os import PathLike
-from typing import Any, TypeVar
+from typing import Annotated, Any, TypeVar
 
-from pydantic import BaseModel, ConfigDict, ValidationError
+from pydantic import AfterValidator, BaseModel, ConfigDict, ValidationError
 
 from seatwin.errors import InputError, ParameterError
 
@@ -61,3 +61,13 @@ def validated(model: type[M], values: dict[str, Any], source: str | PathLike[str
         if source is None:
             raise
         raise InputError(source, exc.detail, where=exc.param) from None
+
+
+def _distinct_seeds(v: tuple[int, ...]) -> tuple[int, ...]:
+    if len(set(v)) != len(v):
+        raise ValueError("expected distinct seeds")
+    return v
+
+
+Seeds = Annotated[tuple[int, ...], AfterValidator(_distinct_seeds)]
+"""A settings field of seeds, none repeated (sweeps and campaigns: every point repeated with each)."""

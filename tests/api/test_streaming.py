@@ -10,7 +10,14 @@ import numpy as np
 import pytest
 
 from seatwin.api.proto import navigation_pb2, navigation_pb2_grpc, sensorstreaming_pb2, sensorstreaming_pb2_grpc
-from seatwin.api.streaming import SensorStreamer, heading_of_quaternion, lidar_request, record_stream
+from seatwin.api.streaming import (
+    SensorStreamer,
+    heading_of_quaternion,
+    lidar_request,
+    radar_request,
+    record_stream,
+    recorded_spokes,
+)
 from seatwin.recording import open_bag
 
 
@@ -92,6 +99,10 @@ def test_simulate_streams_into_record_stream(tmp_path):
         assert len(spokes) == res.frames["radar"] and spokes[0].pixels.ndim >= 2
         truth = b.ground_truth()["milliAmpere"]
         assert truth.north[0] == pytest.approx(10.0) and truth.heading[0] == pytest.approx(math.pi / 2, abs=1e-6)
+    (rotation, *_) = recorded_spokes(tmp_path / "rec")  # each spoke's azimuth at the centre of its step
+    ns = rotation.num_spokes
+    assert rotation.intensities.shape == (ns, spokes[0].pixels.shape[1]) and len(rotation.azimuth) == ns > 100
+    np.testing.assert_allclose(rotation.azimuth, (np.arange(ns) + 0.5) * 2 * np.pi / ns, rtol=1e-6)
 
 
 def test_camera_images_and_serve_stream(tmp_path):
@@ -121,3 +132,46 @@ def test_camera_images_and_serve_stream(tmp_path):
         (img,) = list(b.images("/camera/front/image_raw"))
         px = np.asarray(img.pixels).reshape(4, 6, 3)
         assert (px[:, :, ::-1] == Img.bgr).all() or (px == Img.bgr).all()
+
+
+def test_radar_spokes_keep_their_azimuths(tmp_path):
+    """Every spoke's azimuth and time go on the wire (RadarStreamingRequest) and into the recording."""
+    from seatwin.sensors.radar.spokes import RadarSpokes
+
+    rng = np.random.default_rng(1)
+    n = 6
+    spokes = RadarSpokes(
+        range_start=2.5,
+        range_increment=0.75,
+        min_intensity=3,
+        max_intensity=200,
+        time_in_seconds=1.6e9 + np.sort(rng.uniform(0.0, 2.5, n)),
+        azimuth=np.sort(rng.uniform(0.0, 2 * np.pi, n)),  # uneven: not recoverable from the row index
+        intensities=rng.integers(0, 255, (n, 5), dtype=np.uint8),
+    )
+    req = radar_request(spokes)
+    assert (req.numSpokes, req.numSamples) == (n, 5) and len(req.azimuth) == len(req.timeInSeconds) == n
+    assert np.array_equal(np.asarray(req.azimuth, np.float32), spokes.azimuth.astype(np.float32))
+    assert np.array_equal(np.asarray(req.timeInSeconds), spokes.time_in_seconds)
+
+    class Scan:  # what the radar sensor captures, with its spokes
+        pass
+
+    scan = Scan()
+    scan.spokes = spokes
+    rec = record_stream(tmp_path / "rec", port=0)
+    streamer = SensorStreamer(rec.address)
+    try:
+        streamer.on_frame(object(), 1.6e9, 0, scan)
+        streamer.on_frame(object(), 1.6e9 + 2.5, 1, scan)
+    finally:
+        streamer.close()
+        counts = rec.stop()
+    assert counts["radar"] == 2 and streamer.sent["radar"] == 2
+    got = recorded_spokes(tmp_path / "rec")
+    assert len(got) == 2
+    for g in got:
+        assert np.array_equal(g.azimuth, spokes.azimuth.astype(np.float32).astype(np.float64))
+        assert np.array_equal(g.time_in_seconds, spokes.time_in_seconds)
+        assert np.array_equal(g.intensities, spokes.intensities)
+        assert (g.range_start, g.range_increment, g.min_intensity, g.max_intensity) == (2.5, 0.75, 3, 200)

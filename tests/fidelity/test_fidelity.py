@@ -67,6 +67,12 @@ def test_fidelity_cli_on_toy_data(toy_mat, tmp_path):
     assert j["fit_on"] == "first-half" and j["seeds"] == 2
     assert set(j["models"]) == {"default", "fitted"}
     assert set(j["models"]["fitted"]["agents"]) == {"jipda", "gnn"}
+    # The unpaired score beside AHED: per model and agent, and the ranking (primary agent, best first).
+    assert [r["model"] for r in j["ranking"]] and {r["model"] for r in j["ranking"]} == {"default", "fitted"}
+    defined = [r["score"] for r in j["ranking"] if r["score"] is not None]
+    assert defined == sorted(defined) and all(r["reason"] for r in j["ranking"] if r["score"] is None)
+    assert j["score"] == j["models"]["fitted"]["agents"]["jipda"]["score"]
+    assert "targets" in j["models"]["fitted"]["agents"]["gnn"]["score_parts"]
     if j["ahed"] is not None:
         assert 0.0 <= j["ahed"] <= 1.0
         assert j["ahed_ci"][0] <= j["ahed"] <= j["ahed_ci"][1]
@@ -74,6 +80,7 @@ def test_fidelity_cli_on_toy_data(toy_mat, tmp_path):
     assert j["radar_fit"]["n_scans"] == 40
     assert j["window"][0] == pytest.approx(load_joyride(toy_mat).time[40])
     assert "What drives the remaining distance" in (out / "fidelity.md").read_text()
+    assert "Models ranked by fidelity score" in (out / "fidelity.md").read_text()
 
 
 def test_fidelity_bad_input(tmp_path, capsys):
@@ -114,6 +121,7 @@ def test_fidelity_real_joyride(shared_data, tmp_path):
     assert j["n_common"] > 0
     page = (out / "index.html").read_text()
     assert len(page) > 10_000
+    assert "Models ranked by fidelity score" in page and 'alt="fidelity score by model"' in page
     assert "held-out second half" in page and "agent JIPDA" in page  # which half was fitted; the agent on each row
 
 

@@ -124,3 +124,11 @@ def test_scan_shapes() -> None:
     assert s.z.shape == (2, 1)
     with pytest.raises(ValueError):
         s.positions()
+
+
+def test_load_mask_names(shared_data):
+    from seatwin.perception.map_mask import LayoutMask, NoMask, RasterMask, load_mask
+
+    assert isinstance(load_mask("harbour"), LayoutMask) and isinstance(load_mask("default"), LayoutMask)
+    assert isinstance(load_mask("none"), NoMask) and isinstance(load_mask(None), NoMask)
+    assert isinstance(load_mask("ravnkloa"), RasterMask)

@@ -1,4 +1,5 @@
-"""The fidelity sweep: AHED ranks with the strength of a degraded sensor model; CLI, files, bad input."""
+"""The fidelity sweep: the fidelity score ranks wrong sensor models (degraded or cleaner) against a reference run of
+another seed; CLI, files, bad input."""
 
 from __future__ import annotations
 
@@ -20,7 +21,7 @@ from seatwin.sweep.results import SweepResult, SweepRow, spearman_by_kind
 
 @pytest.fixture(scope="module")
 def small_sweep(tmp_path_factory):
-    """A small sweep through the CLI: noise and mount, two strengths each, two seeds, 20 s."""
+    """A small sweep through the CLI: noise (one cleaner, one noisier model) and mount (two), two seeds, 20 s."""
     out = tmp_path_factory.mktemp("sweep")
     code = run(
         [
@@ -31,7 +32,7 @@ def small_sweep(tmp_path_factory):
             "--kinds",
             "noise,mount",
             "--strengths",
-            "noise=0.1,0.4;mount=1,3",
+            "noise=0,0.8;mount=1,3",
             "--seeds",
             "2",
             "--duration",
@@ -44,31 +45,49 @@ def small_sweep(tmp_path_factory):
 
 
 @pytest.mark.slow
-def test_ahed_ranks_with_degradation(small_sweep):
+def test_score_ranks_wrong_models_with_unmatched_seeds(small_sweep):
     table = json.loads((small_sweep / "sweep.json").read_text())
+    rho = table["spearman"]["score"]
+    assert set(rho["noise"]) == {"degraded", "cleaner"} and set(rho["mount"]) == {"degraded"}
+    for kind, by_dir in rho.items():
+        for direction, r in by_dir.items():
+            assert r["seed_min"] >= 0.9, (kind, direction, r)  # every seed on its own
+    floor = table["floor"]["score"]["mean"]
     for kind in ("noise", "mount"):
-        rho = table["spearman"][kind]
-        assert rho["rho_points"] >= 0.9, (kind, rho)
-        assert rho["rho_means"] >= 0.9, (kind, rho)
-        means = [s["ahed_mean"] for s in table["summary"][kind]]
-        assert means[0] == 0.0  # the seed-matched reference against itself
-        assert all(b > a for a, b in zip(means, means[1:])), (kind, means)
+        means = {s["strength"]: s["mean"] for s in table["summary"]["score"][kind]}
+        ref = means.pop(DEGRADATIONS[kind].reference)
+        assert ref == pytest.approx(floor)
+        assert all(v > ref for v in means.values()), (kind, ref, means)
 
 
 @pytest.mark.slow
 def test_sweep_files(small_sweep):
     rows = list(csv.DictReader((small_sweep / "sweep.csv").open()))
     kinds = [r["kind"] for r in rows]
-    assert kinds.count("reference") == 2 and kinds.count("seed-to-seed") == 1
-    assert kinds.count("noise") == 4 and kinds.count("mount") == 4
-    assert all(int(r["n_common"]) > 0 for r in rows)
+    assert kinds.count("reference") == 2 and kinds.count("noise") == 4 and kinds.count("mount") == 4
+    assert all(int(r["n_common"]) > 0 and r["score"] for r in rows)
+    assert {r["reference_seed"] for r in rows} == {"1001", "1002"}
+    assert all(float(r["score_ci_low"]) <= float(r["score"]) <= float(r["score_ci_high"]) for r in rows)
     assert (small_sweep / "sweep.png").stat().st_size > 10_000
-    assert len(list((small_sweep / "tracks").glob("*.csv"))) == 2 * (1 + 2 + 2)
+    assert len(list((small_sweep / "jobs").glob("*.json"))) == 2 * (2 + 2 + 2)  # per seed: reference, model, 4 copies
     table = json.loads((small_sweep / "sweep.json").read_text())
-    assert table["settings"]["comparison"]["reference"] == "the seed-matched reference run"
-    assert table["seed_to_seed_floor"]["mean"] > 0
-    # an earlier sweep is never overwritten
-    assert run(["sweep", "--out", str(small_sweep), "--kinds", "noise", "--seeds", "1", "--duration", "1"]) == 2
+    assert table["settings"]["comparison"]["reference"] == "the reference run of seed s + 1000"
+    assert table["settings"]["reference_model"]["range_noise"] == DEGRADATIONS["noise"].reference
+    assert table["floor"]["score"]["mean"] > 0
+    # the same command again resumes: every job is found finished, the files come out the same
+    before = (small_sweep / "sweep.csv").read_bytes()
+    args = [
+        "sweep",
+        "ferry_crossing",
+        "--out",
+        str(small_sweep),
+        "--kinds",
+        "noise,mount",
+        "--strengths",
+        "noise=0,0.8;mount=1,3",
+    ]
+    assert run([*args, "--seeds", "2", "--duration", "20", "--no-progress"]) == 0
+    assert (small_sweep / "sweep.csv").read_bytes() == before
 
 
 def test_biased_mount_is_simulated_but_nominal_mount_recorded(tmp_path):
@@ -88,16 +107,24 @@ def test_biased_mount_is_simulated_but_nominal_mount_recorded(tmp_path):
 
 
 def test_degradation_settings_and_parsing():
-    assert DEGRADATIONS["noise"].settings(0.2) == {"range_noise": 0.2}
-    assert DEGRADATIONS["mount"].settings(2.0) == {"mount_yaw_bias_deg": 2.0}
-    assert DEGRADATIONS["dissipation"].settings(1.0) == {"dissipation": True}
+    from seatwin.sweep.degradations import reference_model
+
+    base = reference_model()
+    assert base == {"range_noise": 0.1, "ray_drop": 0.8, "dissipation": False, "mount_yaw_bias_deg": 0.0}
+    assert DEGRADATIONS["noise"].settings(0.2) == {**base, "range_noise": 0.2}
+    assert DEGRADATIONS["noise"].settings(0.0) == {**base, "range_noise": 0.0}  # cleaner than the reference
+    assert DEGRADATIONS["mount"].settings(2.0) == {**base, "mount_yaw_bias_deg": 2.0}
+    assert DEGRADATIONS["dissipation"].settings(1.0) == {**base, "dissipation": True}
     assert DEGRADATIONS["drop"].reference == pytest.approx(0.8)
+    assert DEGRADATIONS["drop"].direction(0.5) == "cleaner" and DEGRADATIONS["drop"].direction(0.9) == "degraded"
     for d in DEGRADATIONS.values():  # every kind sets fields of SimulationSettings, validly
         for s in d.default_strengths:
             SimulationSettings().with_(**d.settings(s))
     with pytest.raises(ParameterError) as exc:
-        DEGRADATIONS["drop"].settings(0.5)  # below the reference model's drop: not a degradation
+        DEGRADATIONS["drop"].settings(0.8)  # the reference itself is not a swept strength
     assert exc.value.param == "strengths"
+    with pytest.raises(ParameterError):
+        DEGRADATIONS["mount"].settings(-1.0)  # mount has no cleaner side
     with pytest.raises(ParameterError) as exc:
         degradation("blur")
     assert exc.value.param == "kinds"
@@ -122,7 +149,8 @@ def test_degradation_settings_and_parsing():
         ({"seeds": (1, 1)}, "seeds"),
         ({"duration": 0.0}, "duration"),
         ({"offset": -1.0}, "offset"),
-        ({"kinds": ("noise",), "strengths": {"noise": (0.01,)}}, "strengths"),
+        ({"kinds": ("noise",), "strengths": {"noise": (-0.01,)}}, "strengths"),
+        ({"kinds": ("noise",), "strengths": {"noise": (0.1,)}}, "strengths"),
         ({"kinds": ("noise",), "strengths": {"mount": (1.0,)}}, "strengths"),
         ({"kinds": ("noise",), "strengths": {"noise": (0.1, 0.1)}}, "strengths"),
     ],
@@ -140,19 +168,27 @@ def test_window_outside_the_scenario_names_the_parameter(tmp_path):
     with pytest.raises(ParameterError) as exc:
         run_sweep(tmp_path / "b", kinds=("mount",), duration=10.0, offset=1e5)
     assert exc.value.param == "offset"
-    assert not (tmp_path / "a" / "tracks").exists()
+    assert not (tmp_path / "a" / "jobs").exists()
 
 
 def test_spearman_by_kind_hand_values():
-    settings = SweepSettings(kinds=("noise",), strengths={"noise": (1.0, 2.0)})
-    rows = [SweepRow("reference", 0.0, s, s, 0.0, 10, 0.0, 1) for s in (1, 2)]
-    rows += [SweepRow("noise", x, s, s, a, 10, 0.0, 1) for x, s, a in [(1, 1, 0.2), (1, 2, 0.3), (2, 1, 0.25), (2, 2, 0.5)]]
+    settings = SweepSettings(kinds=("noise",), strengths={"noise": (0.0, 0.2, 0.4)})
+
+    def row(kind, x, seed, score):
+        return SweepRow(kind, x, seed, seed + 1000, score, score, score, 0.1, 10, 0.0, 1)
+
+    rows = [row("reference", 0.0, s, v) for s, v in ((1, 0.1), (2, 0.2))]
+    rows += [row("noise", x, s, v) for x, s, v in [(0.2, 1, 0.3), (0.2, 2, 0.25), (0.4, 1, 0.5), (0.4, 2, 0.6)]]
+    rows += [row("noise", 0.0, s, v) for s, v in ((1, 0.4), (2, 0.15))]
     rho = spearman_by_kind(SweepResult(settings, rows))["noise"]
-    assert rho.rho_means == pytest.approx(1.0)
-    # points: strength ranks (1.5,1.5,3.5,3.5,5.5,5.5), AHED ranks (1.5,1.5,3,5,4,6) → 14/√(16·17)
-    assert rho.rho_points == pytest.approx(14 / np.sqrt(16 * 17))
-    # degraded only: ranks (1.5,1.5,3.5,3.5) and (1,3,2,4) → 2/√(4·5)
-    assert rho.rho_degraded == pytest.approx(2 / np.sqrt(20))
+    deg, clean = rho["degraded"], rho["cleaner"]
+    # degraded, distances (0, 0, .1, .1, .3, .3) ranks (1.5,1.5,3.5,3.5,5.5,5.5); scores (.1,.2,.3,.25,.5,.6) ranks (1,2,4,3,5,6)
+    assert deg.rho_points == pytest.approx(16 / np.sqrt(16 * 17.5))
+    assert deg.rho_per_seed == {1: pytest.approx(1.0), 2: pytest.approx(1.0)} and deg.seed_min == pytest.approx(1.0)
+    assert deg.rho_means == pytest.approx(1.0)
+    # cleaner: seed 1 rises (0.1 → 0.4), seed 2 falls (0.2 → 0.15): two points give ±1
+    assert clean.rho_per_seed == {1: pytest.approx(1.0), 2: pytest.approx(-1.0)}
+    assert (clean.seed_min, clean.seed_max) == (pytest.approx(-1.0), pytest.approx(1.0))
 
 
 def test_cli_bad_input(tmp_path, capsys):
@@ -160,7 +196,7 @@ def test_cli_bad_input(tmp_path, capsys):
     assert run(["sweep", "--out", str(tmp_path / "b"), "--seeds", "0"]) == 2
     assert run(["sweep", "--out", str(tmp_path / "c"), "--kinds", "noise", "--strengths", "noise=abc"]) == 2
     assert run(["sweep", "--out", str(tmp_path / "d"), "--kinds", "mount", "--duration", "500"]) == 2
-    assert run(["sweep", "--out", str(tmp_path / "e"), "--kinds", "noise", "--strengths", "noise=0.001"]) == 2
+    assert run(["sweep", "--out", str(tmp_path / "e"), "--kinds", "noise", "--strengths", "noise=-0.1"]) == 2
     err = capsys.readouterr().err
     assert "blur" in err and "--seeds" in err and "abc" in err and "--duration" in err and "--strengths" in err
     assert err.count("\n") == 5

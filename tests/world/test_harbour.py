@@ -8,8 +8,8 @@ import yaml
 
 from seatwin.engine import MeshData, make_caster
 from seatwin.errors import InputError
-from seatwin.layout import DEFAULT_LAYOUT
-from seatwin.world.harbour import build_harbour, harbour_from_layout, harbour_from_raster, merge_cells, read_land_raster
+from seatwin.layout import DEFAULT_LAYOUT, read_land_raster
+from seatwin.world.harbour import build_harbour, harbour_from_layout, harbour_from_raster, merge_cells
 
 
 def caster_of(objs):

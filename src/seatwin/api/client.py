@@ -52,12 +52,14 @@ class SimulationClient:
 
 
 def scenario_steps(
-    scenario: Scenario, names: Sequence[str], start: float, duration: float, rate_hz: float = 10.0
+    scenario: Scenario, names: Sequence[str], start: float, duration: float, rate_hz: float = 10.0, lead_in: int = 0
 ) -> Iterator[tuple[float, list[tuple[float, float, float]]]]:
     """``(seconds since start, [(north, east, heading °) per vessel of names])`` at ``rate_hz`` over
-    [start, start + duration], both ends included (a scenario player's output)."""
+    [start, start + duration], both ends included (a scenario player's output); ``lead_in`` steps
+    more before the start (negative times: history the server only interpolates and differentiates,
+    so the first frame's velocities are central differences, as ``seatwin simulate``'s)."""
     n = int(round(duration * rate_hz))
-    for k in range(n + 1):
+    for k in range(-int(lead_in), n + 1):
         rel = k / rate_hz
         poses = []
         for name in names:

@@ -2,17 +2,26 @@
 
 :class:`LockstepSimulation` is what ``seatwin serve`` runs behind its gRPC ``Simulation`` service,
 usable without gRPC. Each :meth:`~LockstepSimulation.step` appends every vessel's pose to its
-trajectory (a scenario that grows), re-poses the scene, and advances the one loop
-(:class:`seatwin.sim.loop.Stepper`) over every frame whose inputs are now known:
+samples (:class:`~seatwin.api.live.LiveTracks`: preallocated, the velocities updated in place) and
+advances the one loop (:class:`seatwin.sim.loop.Stepper`) over every frame whose inputs are now known,
+each sensor on its own horizon:
 
-* a frame at ``t`` runs once ``t + span`` has arrived, ``span`` being the longest sensor frame
-  (a lidar sweep, 0.1 s at 10 Hz; a radar rotation) — a sweep sees its vessels interpolated between
-  the steps around each firing, exactly as ``seatwin simulate`` does;
-* and once ``t`` lies before the second-to-last step, so the ground truth's velocities (central
+* a lidar sweep or radar rotation at ``t`` runs once ``t + span`` has arrived (``span``: the sweep,
+  0.1 s at 10 Hz; the rotation) — it sees its vessels interpolated between the steps around each
+  firing, exactly as ``seatwin simulate`` does; a camera frame once ``t`` has arrived;
+* a ground-truth frame once ``t`` lies before the second-to-last step, so its velocities (central
   differences at the samples) are those of the whole trajectory.
 
-Hence a run driven with a scenario's own samples records what ``seatwin simulate`` records for
-the same window, frame for frame (the frames lag the steps by at most ``span`` + one step).
+The scene is re-posed (a view of the recent samples, no copy) only when a sensor that looks at it
+has a frame to run. A run driven with a scenario's own samples records what ``seatwin simulate``
+records for the same window, frame for frame (the frames lag the steps by at most their ``span`` +
+one step); a radar rotation that would end after the last step is not recorded.
+
+The first frame's velocities: ``simulate`` takes central differences at the window's start (the
+scenario goes on before it); a server has no pose before its first step, so there they are one-sided,
+as ``simulate`` records them for the received poses alone (the run's ``scenario.yaml``). A client that
+wants ``simulate``'s values sends a step before the start (``time`` < 0): such steps only extend the
+trajectories — the frames start at the start time (or the first step after it).
 :meth:`~LockstepSimulation.close` runs the frames still due and finishes the bag.
 """
 
@@ -27,18 +36,17 @@ from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import NDArray
-from pydantic import Field
+from pydantic import Field, field_validator
 
+from seatwin.api.live import LiveGroundTruth, LiveTracks
 from seatwin.errors import InputError, ParameterError
-from seatwin.geo import unwrap, wrap_to_pi
-from seatwin.recording import VesselPose
+from seatwin.layout.harbours import check_harbour_spec
 from seatwin.recording.manifest import MANIFEST_NAME
 from seatwin.scenario import Role, Scenario, Trajectory, Vessel
 from seatwin.scenario.defaults import NOMINAL_DIMENSIONS, OWNSHIP_NAME, RAVNKLOA, TARGETS_BY_COLUMN
 from seatwin.settings import Settings
 from seatwin.sim.loop import SimulationResult, Stepper
-from seatwin.sim.poses import PoseTable, poses_from_scenario
-from seatwin.sim.sensors import GroundTruthSensor, SimSensor
+from seatwin.sim.sensors import GroundTruthSensor, LidarSensor, SimSensor
 
 DEFAULT_VESSELS: tuple[str, ...] = (TARGETS_BY_COLUMN[1][0], TARGETS_BY_COLUMN[2][0], OWNSHIP_NAME)
 """The Gemini CSV's V1, V2, V3 order: Havfruen, Finn, milliAmpere (the ownship)."""
@@ -55,15 +63,27 @@ class LockstepSettings(Settings):
         DEFAULT_VESSELS, min_length=1, description="Vessel names in the order of StepRequest.VesselPoses."
     )
     ownship: str | None = Field(OWNSHIP_NAME, description="The vessel carrying the sensors (one of vessels; None: no sensors).")
-    sensors: tuple[Literal["lidar", "radar"], ...] = Field(
+    sensors: tuple[Literal["lidar", "radar", "camera"], ...] = Field(
         ("lidar",), description="Ownship sensors (empty: ground truth only); ground truth is always recorded."
     )
     seed: int = Field(0, description="Seed of every random draw.")
-    lidar_mode: Literal["raycast", "depthbuffer", "depthbuffer-legacy"] = Field("raycast", description="Lidar range model.")
+    lidar_mode: Literal["raycast", "depthbuffer", "depthbuffer-legacy", "depthbuffer-plane"] = Field(
+        "raycast", description="Lidar range model."
+    )
     lidar_preset: Literal["vlp16", "vlp16-thesis"] = Field("vlp16", description="Lidar preset.")
     fmt: Literal["mcap", "sqlite3", "ros1"] = Field("mcap", description="Bag format.")
     radar_spokes: bool = Field(False, description="Keep each radar rotation's raw spokes (for streaming).")
     ground_truth_rate_hz: float = Field(10.0, gt=0, description="Rate of the ground-truth topics [Hz].")
+    harbour: str = Field(
+        "default",
+        description="Harbour the steps' poses are in: 'default', 'ravnkloa' (the Gemini scenarios' frame), "
+        "'none' or a land raster (.bin/.yaml).",
+    )
+
+    @field_validator("harbour")
+    @classmethod
+    def _harbour(cls, v: str) -> str:
+        return check_harbour_spec(v)
 
 
 def parse_start_time(text: str) -> float:
@@ -87,38 +107,31 @@ def _model_of(name: str) -> tuple[str, Any]:
     return (key, NOMINAL_DIMENSIONS[key]) if key in NOMINAL_DIMENSIONS else ("generic", None)
 
 
-class _LiveTrajectory(Trajectory):
-    """Received samples, already checked (finite, times increasing): a :class:`Trajectory` with the
-    same interpolation and ``numpy.gradient`` velocities, built without re-checking (once a step)."""
+class _Due:
+    """A sensor as the stepper sees it in lock-step: its frames only up to ``limit`` (set each step);
+    ``before_capture(t)`` runs first (the scene's re-posing). Everything else is the sensor's own."""
 
-    def __post_init__(self) -> None:
-        self.heading = np.asarray(wrap_to_pi(self.heading), dtype=float)
-        self._heading_unwrapped = unwrap(self.heading)
-        self._v_north, self._v_east, self._yaw_rate = np.gradient(
-            np.stack([self.north, self.east, self._heading_unwrapped]), self.time, axis=1
-        )
+    def __init__(self, sensor: SimSensor, span_s: float, before_capture: Callable[[float], None] | None = None):
+        self.sensor, self.span_s, self.before_capture = sensor, span_s, before_capture
+        self.limit = -math.inf
 
-
-class _LiveGroundTruth(GroundTruthSensor):
-    """Ground truth whose pose table covers only the frames not yet run (the trajectories keep
-    only their recent samples live; :class:`GroundTruthSensor` tables every frame from the start)."""
-
-    def __init__(self, scenario: Scenario, rate_hz: float):
-        super().__init__(scenario, rate_hz)
-        self._offset = 0
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.sensor, name)
 
     def frame_times(self, t0: float, t1: float) -> NDArray[np.float64]:
-        times = super(GroundTruthSensor, self).frame_times(t0, t1)  # Periodic's
-        new = times[self._offset :]
-        self._table = PoseTable.from_scenario(self.scenario, new) if len(new) else None
-        self._start_index, self._offset = self._offset, len(times)
-        return times
+        return self.sensor.frame_times(t0, min(t1, self.limit))
 
-    def capture(self, t: float, frame: int) -> list[VesselPose]:
-        table, k = self._table, frame - getattr(self, "_start_index", 0)
-        if table is not None and 0 <= k < len(table.times) and table.times[k] == t:
-            return table.poses(k)
-        return poses_from_scenario(self.scenario, t)
+    def capture(self, t: float, frame: int) -> Any:
+        if self.before_capture is not None:
+            self.before_capture(t)
+        return self.sensor.capture(t, frame)
+
+
+def _span_of(sensor: SimSensor) -> float:
+    """How long a frame looks at the world: a lidar sweep, a radar rotation; 0 for an instant (camera, ground truth)."""
+    from seatwin.sim.radar import RadarSensor
+
+    return 1.0 / float(sensor.rate_hz) if isinstance(sensor, LidarSensor | RadarSensor) else 0.0  # type: ignore[attr-defined]
 
 
 class LockstepSimulation:
@@ -150,9 +163,15 @@ class LockstepSimulation:
             role = Role.OWNSHIP if name == s.ownship else Role.TARGET
             vessels.append(Vessel(name, role, placeholder, model, dims))
         self.scenario = Scenario("served", vessels, origin=RAVNKLOA, seed=s.seed, source="seatwin serve")
+        self.tracks = LiveTracks(len(vessels))
         self.sensors = self._sensors()
+        harbour, water_mask = self._harbour()
+        self.scenario.environment["harbour"] = harbour
         self._scenes = {id(sc): sc for sc in (self._scene_of(x) for x in self.sensors) if sc is not None}
-        self.span_s = max((1.0 / float(x.rate_hz) for x in self.sensors if not isinstance(x, GroundTruthSensor)), default=0.0)
+        self._due = [_Due(x, _span_of(x), self._repose if self._scene_of(x) is not None else None) for x in self.sensors]
+        self._posed_n = 0
+        """Samples the scene was last posed with."""
+        self._scene_from = -math.inf
         self.on_frame = on_frame
         self.run_dir.mkdir(parents=True, exist_ok=True)
         self.writer = RecordingWriter(
@@ -161,18 +180,22 @@ class LockstepSimulation:
             sensors={x.name: x.parameters() for x in self.sensors},
             origin=self.scenario.origin,
             seed=s.seed,
-            metadata={"scenario": "served", "served_by": "seatwin serve", "settings": s.model_dump(mode="json")},
+            metadata={
+                "scenario": "served",
+                "served_by": "seatwin serve",
+                "settings": s.model_dump(mode="json"),
+                "harbour": harbour,
+                "tracking": {"map": water_mask},
+            },
         )
         self.start: float | None = None
-        self.times: list[float] = []
-        self._poses: list[NDArray[np.float64]] = []  # per step: (vessels, 3) north, east, heading [rad]
         self.stepper: Stepper | None = None
         self.closed = False
         self._wall0 = _time.perf_counter()
 
     def _sensors(self) -> list[SimSensor]:
         s = self.settings
-        gt = _LiveGroundTruth(self.scenario, s.ground_truth_rate_hz)
+        gt = LiveGroundTruth(self.scenario, self.tracks, s.ground_truth_rate_hz, self.scenario.origin)
         if not s.sensors:
             return [gt]
         from seatwin.sim.run import scenario_sensors
@@ -180,6 +203,7 @@ class LockstepSimulation:
 
         sim = SimulationSettings(
             sensors=s.sensors,
+            harbour=s.harbour,
             seed=s.seed,
             lidar_mode=s.lidar_mode,
             lidar_preset=s.lidar_preset,
@@ -190,6 +214,17 @@ class LockstepSimulation:
         sensors = scenario_sensors(self.scenario, sim)
         return [gt if isinstance(x, GroundTruthSensor) else x for x in sensors]
 
+    def _harbour(self) -> tuple[str, str]:
+        """The harbour (a name or a raster's absolute path) and the water mask ``seatwin track`` should use."""
+        from seatwin.sim.run import run_harbour, water_mask_hint
+        from seatwin.sim.settings import SimulationSettings
+
+        sim = SimulationSettings(harbour=self.settings.harbour)
+        try:
+            return run_harbour(self.scenario, sim), water_mask_hint(self.scenario, sim)
+        except InputError as exc:
+            raise ParameterError("harbour", exc.detail) from None
+
     @staticmethod
     def _scene_of(sensor: SimSensor) -> Any:
         lidar = getattr(sensor, "lidar", None)
@@ -197,23 +232,29 @@ class LockstepSimulation:
 
     # -- the Gemini calls ---------------------------------------------------------------------------
 
+    @property
+    def times(self) -> NDArray[np.float64]:
+        """POSIX times of the steps received so far."""
+        return self.tracks.times
+
     def set_start_time(self, text: str) -> float:
         """Set the POSIX start time (before the first step); return it."""
         if self.closed:
             raise ParameterError("time", "the simulation is closed")
-        if self.times:
+        if self.tracks.n:
             raise ParameterError("time", "the start time cannot change after the first step")
         self.start = parse_start_time(text)
         return self.start
 
     def step(self, poses: Sequence[Sequence[float]], time: float) -> int:
         """Pose the vessels (north, east [m], heading [° clockwise from north], in ``settings.vessels``
-        order) at ``time`` seconds since the start; run the frames now due; return how many ran."""
+        order) at ``time`` seconds since the start (< 0: history before the start, no frames); run the
+        frames now due; return how many ran."""
         if self.closed:
             raise ParameterError("time", "the simulation is closed")
         if self.start is None:
             raise ParameterError("time", "DoStep before SetStartTime: set the start time first")
-        p = np.asarray(poses, dtype=np.float64).reshape(-1, 3) if len(poses) else np.zeros((0, 3))
+        p = np.array(poses, dtype=np.float64).reshape(-1, 3) if len(poses) else np.zeros((0, 3))
         n = len(self.settings.vessels)
         if len(p) != n:
             raise ParameterError("VesselPoses", f"expected {n} poses ({', '.join(self.settings.vessels)}), got {len(p)}")
@@ -224,27 +265,36 @@ class LockstepSimulation:
             raise ParameterError("time", f"expected a finite time, got {time!r}")
         rel = round(float(time) / TIME_QUANTUM_S) * TIME_QUANTUM_S
         t = self.start + rel
-        if self.times and not t > self.times[-1]:
-            raise ParameterError("time", f"time must increase: got {time!r} s after a step at {self.times[-1] - self.start!r} s")
-        row = p.copy()
-        row[:, 2] = np.deg2rad(row[:, 2])
-        self.times.append(t)
-        self._poses.append(row)
-        if self.stepper is None:
-            self.stepper = Stepper(self.sensors, self.writer, t, on_frame=self.on_frame)
-        if len(self.times) < 2:
+        tracks = self.tracks
+        if tracks.n and not t > tracks.sample_time(-1):
+            last = tracks.sample_time(-1) - self.start
+            raise ParameterError("time", f"time must increase: got {time!r} s after a step at {last!r} s")
+        tracks.append(t, p[:, 0], p[:, 1], np.deg2rad(p[:, 2]))
+        if self.stepper is None and rel >= 0:
+            hook = self.on_frame
+            on_frame = None if hook is None else (lambda d, t, k, data: hook(d.sensor, t, k, data))  # the sensor, not its _Due
+            self.stepper = Stepper(self._due, self.writer, max(self.start, tracks.sample_time(0)), on_frame=on_frame)
+        if self.stepper is None or tracks.n < 2:
             return 0
-        self._repose()
-        return self.stepper.advance_to(min(self.times[-2], t - self.span_s))
+        prev = tracks.sample_time(-2)
+        return self._advance([prev if isinstance(d.sensor, GroundTruthSensor) else t - d.span_s for d in self._due])
+
+    def _advance(self, limits: Sequence[float]) -> int:
+        """Run every sensor's frames before its new limit (the stepper's horizon: the latest limit)."""
+        # Every frame of a scene sensor before its previous limit has run: the scene needs the samples from there on.
+        self._scene_from = min((d.limit for d in self._due if d.before_capture is not None), default=math.inf)
+        for d, limit in zip(self._due, limits, strict=True):
+            d.limit = limit
+        return self.stepper.advance_to(max(limits))  # type: ignore[union-attr]
 
     def close(self, completed: bool = True, error: str | None = None) -> SimulationResult:
         """Run the frames still due (each with its whole span received), save the received scenario, finish the bag."""
         if not self.closed:
             self.closed = True
             try:
-                if completed and self.stepper is not None and len(self.times) >= 2:
-                    last = self.times[-1]
-                    self.stepper.advance_to(last - self.span_s + (1e-5 if self.span_s > 0 else 0.0))
+                if completed and self.stepper is not None and self.tracks.n >= 2:
+                    last = self.tracks.sample_time(-1)
+                    self._advance([last - d.span_s + (1e-5 if d.span_s > 0 else 0.0) for d in self._due])
                     self._save_scenario()
             except BaseException as exc:
                 self.writer.close(completed=False, error=f"{type(exc).__name__}: {exc}")
@@ -259,27 +309,33 @@ class LockstepSimulation:
 
     # -- the growing scenario -------------------------------------------------------------------------
 
-    def _trajectory(self, i: int, first: int, kind: type[Trajectory] = Trajectory) -> Trajectory:
-        rows = np.asarray([p[i] for p in self._poses[first:]])
-        return kind(np.asarray(self.times[first:]), rows[:, 0], rows[:, 1], rows[:, 2], source="seatwin serve")
-
-    def _repose(self) -> None:
-        """Every vessel's live trajectory: the samples from two before the loop's horizon on (every
-        frame still to run lies after the horizon; the one before gives central differences there)."""
-        times = self.times
-        horizon = self.stepper.horizon if self.stepper is not None else times[0]
-        first = max(0, min(len(times) - 2, int(np.searchsorted(times, horizon, side="right")) - 3))
+    def _repose(self, t: float) -> None:
+        """Before a scene sensor's frame at ``t``: pose every vessel of the scene along its samples from
+        the one before the earliest frame still to run (views of the samples; once per step)."""
+        tracks = self.tracks
+        if self._posed_n == tracks.n:
+            return
+        self._posed_n = tracks.n
+        earliest = min(t, self._scene_from)
+        first = max(0, min(tracks.n - 2, int(np.searchsorted(tracks.times, earliest, side="right")) - 2))
         for i, v in enumerate(self.scenario.vessels):
-            v.trajectory = self._trajectory(i, first, _LiveTrajectory)
+            track = tracks.window(i, first)
             for scene in self._scenes.values():
-                scene.update_trajectory(v.name, v.trajectory)
+                scene.update_trajectory(v.name, track)
 
     def received_scenario(self) -> Scenario:
         """Every pose received so far, as a scenario (needs two steps)."""
         vessels = [
-            Vessel(v.name, v.role, self._trajectory(i, 0), v.model, v.dimensions) for i, v in enumerate(self.scenario.vessels)
+            Vessel(v.name, v.role, self.tracks.trajectory(i), v.model, v.dimensions) for i, v in enumerate(self.scenario.vessels)
         ]
-        return Scenario("served", vessels, origin=self.scenario.origin, seed=self.scenario.seed, source="seatwin serve")
+        return Scenario(
+            "served",
+            vessels,
+            origin=self.scenario.origin,
+            seed=self.scenario.seed,
+            source="seatwin serve",
+            environment=dict(self.scenario.environment),
+        )
 
     def _save_scenario(self) -> None:
         from seatwin.scenario.load import save_scenario

@@ -3,9 +3,12 @@
 :func:`serve` starts a gRPC server whose ``DoStep``/``SetStartTime`` drive a
 :class:`~seatwin.api.lockstep.LockstepSimulation` (the one loop, recording as ``seatwin simulate``
 does). Calls are handled one at a time, and ``DoStep`` answers only when the frames it made due are
-recorded (lock-step). A bad request (NaN or infinite pose, wrong pose count, time going backwards,
-``DoStep`` before ``SetStartTime``) is answered with status ``INVALID_ARGUMENT`` and a message; the
-server keeps serving. :meth:`ServerHandle.stop` finishes the bag (manifest ``completed: true``).
+recorded (lock-step). Every call runs on the server's one worker thread, where the simulation is
+built and closed too (a camera's EGL context works only on the thread that created it; each thread
+gets its own, :func:`seatwin.render.context.create_context`). A bad request (NaN or infinite pose,
+wrong pose count, time going backwards, ``DoStep`` before ``SetStartTime``) is answered with status
+``INVALID_ARGUMENT`` and a message; the server keeps serving. :meth:`ServerHandle.stop` finishes
+the bag (manifest ``completed: true``).
 """
 
 from __future__ import annotations
@@ -37,6 +40,9 @@ SERVER_OPTIONS = [*GRPC_OPTIONS, ("grpc.so_reuseport", 0)]
 """A port in use is an error, not shared with the other server."""
 
 
+_STEP_OK = gemini_osp_pb2.StepResponse(success=True)
+
+
 def _message(exc: InputError) -> str:
     return exc.render(exc.param) if isinstance(exc, ParameterError) else str(exc)
 
@@ -65,7 +71,7 @@ class SimulationServicer(gemini_osp_pb2_grpc.SimulationServicer):
         poses = [(p.north, p.east, p.heading) for p in request.VesselPoses]
         self._call(lambda: self.sim.step(poses, request.time), context)
         self.steps += 1
-        return gemini_osp_pb2.StepResponse(success=True)
+        return _STEP_OK
 
     def SetStartTime(self, request: Any, context: grpc.ServicerContext) -> Any:  # noqa: N802 - Gemini's name
         self._call(lambda: self.sim.set_start_time(request.time), context)
@@ -99,6 +105,8 @@ class ServerHandle:
     port: int
     sim: LockstepSimulation
     servicer: SimulationServicer
+    worker: futures.ThreadPoolExecutor
+    """The one thread every call runs on (and the simulation was built on)."""
     _result: SimulationResult | None = None
 
     @property
@@ -110,7 +118,8 @@ class ServerHandle:
         if self._result is None:
             self.server.stop(grace).wait()
             with self.servicer.lock:
-                self._result = self.sim.close(completed=completed)
+                self._result = self.worker.submit(self.sim.close, completed=completed).result()
+            self.worker.shutdown()
         return self._result
 
 
@@ -132,14 +141,20 @@ def serve(
 
     settings = validated(LockstepSettings, {**(settings or LockstepSettings()).model_dump(), **changes})
     check_port(port)
-    sim = LockstepSimulation(run_dir, settings, on_frame=on_frame)
-    server = grpc.server(futures.ThreadPoolExecutor(max_workers=4), options=SERVER_OPTIONS)
+    worker = futures.ThreadPoolExecutor(max_workers=1, thread_name_prefix="seatwin-serve")
+    try:
+        sim = worker.submit(LockstepSimulation, run_dir, settings, on_frame=on_frame).result()
+    except BaseException:
+        worker.shutdown()
+        raise
+    server = grpc.server(worker, options=SERVER_OPTIONS)
     servicer = SimulationServicer(sim)
     gemini_osp_pb2_grpc.add_SimulationServicer_to_server(servicer, server)
     try:
         bound = bind(server, host, port)
     except ParameterError:
-        sim.close(completed=False, error="the server could not start")
+        worker.submit(sim.close, completed=False, error="the server could not start").result()
+        worker.shutdown()
         raise
     server.start()
-    return ServerHandle(server, host, bound, sim, servicer)
+    return ServerHandle(server, host, bound, sim, servicer, worker)

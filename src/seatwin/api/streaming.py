@@ -8,10 +8,13 @@
 * :func:`record_stream` — the server (``seatwin record-stream``): writes what arrives into a ROS bag
   through :class:`~seatwin.recording.RecordingWriter`, as a Gemini/Unity simulator's ROS-side
   recorder: clouds as PointCloud2 on ``/<frame_id>/points`` (the layout they came in), camera images
-  as ``sensor_msgs/Image`` on ``/<frame_id>/image_raw``, radar spokes as a mono8 image (a row per
-  spoke, a column per range sample) on ``/radar/spokes``, and ``NavigationRequest`` as the ground
-  truth of its vessel (position x, y = north, east [m] in the scenario's NED frame, heading the
-  quaternion's yaw about z down).
+  as ``sensor_msgs/Image`` on ``/<frame_id>/image_raw``, a radar rotation as a mono8 image (a row per
+  spoke, a column per range sample) on ``/radar/spokes`` plus, same stamp, a PointCloud2 on
+  ``/radar/spokes/azimuth`` with a point per spoke (row) in :data:`SPOKE_LAYOUT` — the request's
+  per-spoke ``azimuth`` [rad clockwise from the bow] and ``timeInSeconds``, and its range start,
+  range increment and intensity bounds — so :func:`recorded_spokes` gives back every field of the
+  request; and ``NavigationRequest`` as the ground truth of its vessel (position x, y = north, east
+  [m] in the scenario's NED frame, heading the quaternion's yaw about z down).
 """
 
 from __future__ import annotations
@@ -28,7 +31,25 @@ import numpy as np
 
 from seatwin.api.proto import navigation_pb2, navigation_pb2_grpc, sensorstreaming_pb2, sensorstreaming_pb2_grpc
 from seatwin.errors import InputError, ParameterError
-from seatwin.recording.pointcloud import VLP16_LAYOUT, Field, Layout, pack
+from seatwin.recording.pointcloud import FLOAT32, FLOAT64, UINT32, VLP16_LAYOUT, Field, Layout, pack
+
+SPOKES_TOPIC = "/radar/spokes"
+SPOKE_AZIMUTH_TOPIC = "/radar/spokes/azimuth"
+
+SPOKE_LAYOUT = Layout(
+    fields=(
+        Field("azimuth", 0, FLOAT32),
+        Field("time", 4, FLOAT64),
+        Field("range_start", 12, FLOAT32),
+        Field("range_increment", 16, FLOAT32),
+        Field("min_intensity", 20, UINT32),
+        Field("max_intensity", 24, UINT32),
+    ),
+    point_step=28,
+)
+"""A point per spoke of ``/radar/spokes/azimuth`` (row k of the ``/radar/spokes`` image): the
+``RadarStreamingRequest``'s ``azimuth`` (float, as on the wire) and ``timeInSeconds`` (double) of
+the spoke, and the rotation's ``rangeStart``, ``rangeIncrement``, ``minIntensity``, ``maxIntensity``."""
 
 _POINTFIELD_CONSTANTS = {"INT8": 1, "UINT8": 2, "INT16": 3, "UINT16": 4, "INT32": 5, "UINT32": 6, "FLOAT32": 7, "FLOAT64": 8}
 
@@ -175,9 +196,24 @@ class StreamRecorder:
         ns, nr = int(r.numSpokes), int(r.numSamples)
         if ns <= 0 or nr <= 0 or len(r.radarSpokes) != ns * nr:
             raise InputError("RadarStreamingRequest", f"radarSpokes has {len(r.radarSpokes)} bytes, not {ns}×{nr}")
-        t = float(r.timeInSeconds[0]) if len(r.timeInSeconds) else 0.0
+        for name in ("azimuth", "timeInSeconds"):
+            if len(getattr(r, name)) not in (0, ns):
+                raise InputError("RadarStreamingRequest", f"{name} has {len(getattr(r, name))} values for {ns} spokes")
+        times = np.asarray(r.timeInSeconds, np.float64) if len(r.timeInSeconds) else np.zeros(ns)
+        azimuth = np.asarray(r.azimuth, np.float32) if len(r.azimuth) else np.full(ns, np.nan, np.float32)
+        t = float(times[0])
         img = np.frombuffer(r.radarSpokes, np.uint8).reshape(ns, nr)
-        self.writer.write_image("/radar/spokes", "radar", t, img, "mono8")
+        self.writer.write_image(SPOKES_TOPIC, "radar", t, img, "mono8")
+        spokes = pack(
+            SPOKE_LAYOUT,
+            azimuth=azimuth,
+            time=times,
+            range_start=np.full(ns, r.rangeStart, np.float32),
+            range_increment=np.full(ns, r.rangeIncrement, np.float32),
+            min_intensity=np.full(ns, r.minIntensity, np.uint32),
+            max_intensity=np.full(ns, r.maxIntensity, np.uint32),
+        )
+        self.writer.write_cloud(SPOKE_AZIMUTH_TOPIC, "radar", t, SPOKE_LAYOUT, spokes)
         self.counts["radar"] += 1
 
     def navigation(self, r: Any) -> None:
@@ -284,3 +320,33 @@ def record_stream(
         raise
     server.start()
     return RecorderHandle(server, host, bound, recorder)
+
+
+def recorded_spokes(run_dir: str | Path) -> list[Any]:
+    """Every radar rotation ``record-stream`` recorded, as :class:`~seatwin.sensors.radar.spokes.RadarSpokes`
+    (azimuths and range fields as the requests carried them: float32; times float64)."""
+    from seatwin.recording import open_bag
+    from seatwin.sensors.radar.spokes import RadarSpokes
+
+    with open_bag(run_dir) as bag:
+        images = list(bag.images(SPOKES_TOPIC))
+        clouds = list(bag.point_clouds(SPOKE_AZIMUTH_TOPIC))
+    if len(images) != len(clouds):
+        raise InputError(run_dir, f"{len(images)} radar spoke images but {len(clouds)} {SPOKE_AZIMUTH_TOPIC} messages")
+    out = []
+    for img, cloud in zip(images, clouds):
+        p, px = cloud.points, np.asarray(img.pixels, np.uint8)
+        if px.shape[0] != len(p) or abs(img.stamp - cloud.stamp) > 1e-6:
+            raise InputError(run_dir, f"the spoke image at {img.stamp!r} does not match its azimuths at {cloud.stamp!r}")
+        out.append(
+            RadarSpokes(
+                range_start=float(p["range_start"][0]),
+                range_increment=float(p["range_increment"][0]),
+                min_intensity=int(p["min_intensity"][0]),
+                max_intensity=int(p["max_intensity"][0]),
+                time_in_seconds=np.asarray(p["time"], np.float64),
+                azimuth=np.asarray(p["azimuth"], np.float64),
+                intensities=px.reshape(len(p), -1),
+            )
+        )
+    return out

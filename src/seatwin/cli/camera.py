@@ -6,6 +6,8 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.flags import either, old_spelling
+
 _SNAPSHOT_HELP = (
     "Render the three frontal cameras (left, front, right: 72° apart, 15° down, 82° HFOV, 612 × 512) of a "
     "scenario's ownship at one time and write <camera>.png into DIR with every vessel's ground-truth box drawn "
@@ -20,13 +22,21 @@ def register(app: typer.Typer) -> None:
     @group.command("snapshot", help=_SNAPSHOT_HELP)
     def snapshot_cmd(
         scenario: str = typer.Argument(..., metavar="SCENARIO", help="A built-in scenario name or a scenario file."),
-        time_s: float = typer.Option(0.0, "--offset", "--time", "-t", help="Seconds after the scenario's start."),
+        time_s: float = typer.Option(0.0, "--offset", "-t", help="Seconds after the scenario's start."),
+        time_old: float | None = old_spelling("--time", "--offset"),
         out: Path = typer.Option(..., "--out", "-o", metavar="DIR", help="Directory for left.png, front.png, right.png."),
         no_boxes: bool = typer.Option(False, "--no-boxes", help="Write the images without the boxes."),
+        harbour: str | None = typer.Option(
+            None,
+            "--harbour",
+            help="Harbour instead of the scenario's own: 'default', 'ravnkloa' (a Gemini CSV's default), 'none' "
+            "or a land raster .bin/.yaml.",
+        ),
     ) -> None:
         from seatwin.pipeline.labels import camera_snapshot
 
-        snap = camera_snapshot(scenario, time_s, out, boxes=not no_boxes)
+        time_s = either(time_s, time_old, 0.0, "--offset", "--time")
+        snap = camera_snapshot(scenario, time_s, out, boxes=not no_boxes, harbour=harbour)
         for path in snap.files:
             labels = snap.labels[path.stem]
             names = ", ".join(f"{b.instance} ({b.visible_fraction:.2f} visible)" for b in labels) or "no vessel"

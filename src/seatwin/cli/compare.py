@@ -80,7 +80,7 @@ def register(app: typer.Typer) -> None:
         map_spec: str = typer.Option(
             "harbour",
             "--map",
-            metavar="harbour|none|RASTER.yaml",
+            metavar="harbour|ravnkloa|none|RASTER.yaml",
             help=(
                 "Land drawn under the report's track plots: the built-in harbour, none, or a land/water raster "
                 "(Ravnkloa base-map format)."
@@ -100,6 +100,24 @@ def register(app: typer.Typer) -> None:
         ),
         keep_tracks: Path | None = typer.Option(
             None, "--keep-tracks", metavar="DIR", help="Write the track files of tracked recordings into DIR."
+        ),
+        camera_fusion: bool = typer.Option(
+            True,
+            "--camera-fusion/--no-camera-fusion",
+            help=(
+                "Where both recordings have lidar and cameras, also report AHED with lidar alone and with lidar + camera "
+                "side by side (thesis Fig. 5.3 vs 5.16) and compare their bounding boxes."
+            ),
+        ),
+        detector: str = typer.Option(
+            "label",
+            "--detector",
+            metavar="label|onnx",
+            help="Camera detector: 'label' (the recorded labels) or 'onnx' (a YOLO-style --model on the recorded images).",
+        ),
+        model: Path | None = typer.Option(None, "--model", metavar="FILE.onnx", help="The onnx detector's model."),
+        box_min_iou: float | None = typer.Option(
+            None, "--box-min-iou", metavar="IOU", help="Smallest IoU of a matched pair of boxes in the box comparison (0.3)."
         ),
     ) -> None:
         import json
@@ -136,21 +154,40 @@ def register(app: typer.Typer) -> None:
             clouds_relative=relative,
             clouds_sensor=clouds_sensor,
             keep_tracks=keep_tracks,
+            camera_fusion=camera_fusion,
+            detector=detector,
+            model=None if model is None else str(model),
+            box_min_iou=box_min_iou,
         )
         table = result.table
-        typer.echo(f"{'target':<12} {'tuning':<10} {'AHED':>9} {'common':>6} {'only_r':>6} {'only_s':>6} {'covdiff':>8}")
+        typer.echo(
+            f"{'target':<12} {'tuning':<10} {'AHED':>9} {'common':>6} {'only_r':>6} {'only_s':>6} {'covdiff':>8} "
+            f"{'score [95% CI]':>22}"
+        )
         for ln in table["targets"]:
             ahed = "undefined" if ln["ahed"] is None else f"{ln['ahed']:.4f}"
             cd = "-" if ln["mean_covdiff"] is None else f"{ln['mean_covdiff']:.4f}"
+            score = (
+                "undefined" if ln["score"] is None else f"{ln['score']:.3f} [{ln['score_ci_low']:.3f}, {ln['score_ci_high']:.3f}]"
+            )
             typer.echo(
                 f"{ln['target']:<12} {ln['tuning']:<10} {ahed:>9} {ln['n_common']:>6} {ln['n_only_real']:>6} "
-                f"{ln['n_only_synthetic']:>6} {cd:>8}"
+                f"{ln['n_only_synthetic']:>6} {cd:>8} {score:>22}"
             )
+            if ln["score"] is None and ln["score_reason"]:
+                typer.echo(f"  score of {ln['target']} undefined: {ln['score_reason']}")
         mean = "undefined" if table["ahed_mean"] is None else f"{table['ahed_mean']:.4f}"
         n_all = len(table["targets"])
         typer.echo(
             f"AHED mean ({hellinger_form} HED) over the {table['ahed_n']} of {n_all} target lines where it is defined: {mean}"
         )
+        for tun, sc in table["score_by_tuning"].items():
+            if sc is None:
+                continue
+            o = sc["score"]
+            value = "undefined" if o["value"] is None else f"{o['value']:.3f} [{o['ci_low']:.3f}, {o['ci_high']:.3f}]"
+            why = f" ({o['reason']})" if o["reason"] else ""
+            typer.echo(f"fidelity score{' (tuning ' + tun + ')' if tun else ''}: {value}{why}")
         for ft in table["false_tracks"]:
             for side in ("real", "synthetic"):
                 f = ft[side]
@@ -160,6 +197,8 @@ def register(app: typer.Typer) -> None:
                         f"false tracks, {side} dataset{' (tuning ' + ft['tuning'] + ')' if ft['tuning'] else ''}: "
                         f"{f['n_tracks']}{land}"
                     )
+        if result.camera is not None:
+            _print_camera(result.camera)
         for path in result.track_files:
             typer.echo(f"wrote {path}")
         if json_out is not None:
@@ -180,3 +219,40 @@ def _clouds_time(text: str | None) -> tuple[float | None, bool]:
     except ValueError:
         raise ParameterError("clouds_at", f"expected POSIX seconds or +SECONDS, got {text!r}") from None
     return value, text.strip().startswith("+")
+
+
+def _num(x: float | None, spec: str = ".4f") -> str:
+    return "undefined" if x is None else format(x, spec)
+
+
+def _print_camera(camera: dict) -> None:
+    """The camera block: AHED with lidar alone and with lidar + camera per target, then the box comparison."""
+    fusion = camera["fusion"]
+    typer.echo(f"lidar alone vs lidar + camera (thesis Fig. 5.3 vs 5.16; camera detector {camera['detector']}):")
+    if fusion["targets"]:
+        typer.echo(f"{'target':<12} {'tuning':<10} {'AHED lidar':>10} {'AHED l+c':>10} {'common':>6} {'common l+c':>10}")
+        for ln in fusion["targets"]:
+            typer.echo(
+                f"{ln['target']:<12} {ln['tuning']:<10} {_num(ln['ahed_lidar']):>10} {_num(ln['ahed_lidar_camera']):>10} "
+                f"{ln['n_common_lidar']:>6} {ln['n_common_lidar_camera']:>10}"
+            )
+        typer.echo(
+            f"AHED mean: lidar {_num(fusion['ahed_mean_lidar'])} (n = {fusion['ahed_n_lidar']}), lidar + camera "
+            f"{_num(fusion['ahed_mean_lidar_camera'])} (n = {fusion['ahed_n_lidar_camera']})"
+        )
+    for why in camera["skipped"]:
+        typer.echo(f"  not compared: {why}")
+    for boxes in camera["boxes"]:
+        typer.echo(f"bounding boxes, real vs synthetic (matched at IoU >= {boxes['min_iou']:g}):")
+        typer.echo(
+            f"{'camera':<16} {'images r/s':>11} {'matched':>7} {'IoU mean':>8} {'IoU med':>8} {'offset px':>9} "
+            f"{'p95 px':>7} {'rate r':>7} {'rate s':>7} {'s-r':>7}"
+        )
+        for b in [*boxes["cameras"], boxes["overall"]]:
+            typer.echo(
+                f"{b['camera']:<16} {str(b['n_images_real']) + '/' + str(b['n_images_synthetic']):>11} {b['n_matched']:>7} "
+                f"{_num(b['iou_mean'], '.3f'):>8} {_num(b['iou_median'], '.3f'):>8} "
+                f"{_num(b['centre_offset_mean_px'], '.2f'):>9} {_num(b['centre_offset_p95_px'], '.2f'):>7} "
+                f"{_num(b['detection_rate_real'], '.1%'):>7} {_num(b['detection_rate_synthetic'], '.1%'):>7} "
+                f"{_num(b['detection_rate_difference'], '+.1%'):>7}"
+            )

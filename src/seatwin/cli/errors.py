@@ -13,9 +13,14 @@ _HELP = (
     "lidar_nc4, lidar_eq436) follow consistently from the equations 4.14–4.17 and 4.36. Each row "
     "lists what does not add up (conditions 4.33, aspect ratio 4.3, differences to the print) "
     "under 'warnings'.\n\n"
+    "Below the table: the complete range-error bound of a depth-buffer lidar return (row lidar_eq417) — "
+    "storage term (one depth level, 4.21) plus grazing term (the pixel-centre ray up to δ_max off the "
+    "beam, at incidence i: r(cos i/cos(i+δ) − 1)) for the thesis's filter, and the bound of "
+    "--lidar-mode depthbuffer-plane (beam intersected with the pixel's surface plane: storage only).\n\n"
     "With --verify, instead: the claim 4.11/4.24 checked on the default harbour — a stationary "
     "VLP-16 (1800 columns) among vessels at 8–95 m, depth-buffer points with and without the "
-    "filter against the exact points of their beams — printed as JSON (takes a few seconds)."
+    "filter, and depthbuffer-plane rasterised by OpenGL (float32 view depth 'plane', 24-bit depth "
+    "'plane_24bit'), against the exact points of their beams — printed as JSON (takes a few seconds)."
 )
 
 
@@ -34,6 +39,23 @@ def _format_table(rows: list[dict]) -> str:
     for r in rows:
         for w in r["warnings"]:
             lines.append(f"! {r['sensor']}: {w}")
+    return "\n".join(lines)
+
+
+def _format_bound(bound: dict) -> str:
+    """The range-error bound (storage + grazing term) as a table, in millimetres."""
+    head = f"{'r [m]':>6}{'i [°]':>7}{'storage':>10}{'grazing':>10}{'filter':>10}{'plane':>10}"
+    lines = [
+        f"Complete range-error bound of a return on a plane, {bound['sensor']} (δ_max = "
+        f"{bound['pixel_deviation_max_deg']:.4f}°), mm: filter = storage + grazing; plane = depthbuffer-plane",
+        head,
+        "-" * len(head),
+    ]
+    for b in bound["rows"]:
+        lines.append(
+            f"{b['range_m']:>6g}{b['incidence_deg']:>7g}{1e3 * b['storage_m']:>10.2f}{1e3 * b['grazing_m']:>10.2f}"
+            f"{1e3 * b['filter_m']:>10.2f}{1e3 * b['plane_m']:>10.2f}"
+        )
     return "\n".join(lines)
 
 
@@ -72,7 +94,10 @@ def register(app: typer.Typer) -> None:
             if not as_json:
                 for p in written:
                     typer.echo(f"wrote {p}", err=True)
-        typer.echo(json.dumps(data, indent=2, ensure_ascii=False) if as_json else _format_table(data["rows"]))
+        if as_json:
+            typer.echo(json.dumps(data, indent=2, ensure_ascii=False))
+        else:
+            typer.echo(_format_table(data["rows"]) + "\n\n" + _format_bound(data["range_bound"]))
 
 
 def _verify(plots: Path | None) -> None:

@@ -53,7 +53,7 @@ def register(app: typer.Typer) -> None:
         map_spec: str | None = typer.Option(
             None,
             "--map",
-            metavar="harbour|none|RASTER",
+            metavar="harbour|ravnkloa|none|RASTER",
             help="Water mask to count false tracks on land (default: the recording's harbour, when --truth is a recording).",
         ),
     ) -> None:

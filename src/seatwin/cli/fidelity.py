@@ -13,7 +13,10 @@ _JOYRIDE_HELP = (
     "and a GNN tracker, same EKF), compares them (HED, COVDIFF, AHED, instants where only one has a track) "
     "and writes DIR/fidelity.json, DIR/fidelity.md and the HTML report DIR/index.html. With "
     "--fit-on first-half the radar model is fitted on the first half only and AHED is reported on the "
-    "second half (no peeking), with a block-bootstrap 95 % interval and its spread over seeds."
+    "second half (no peeking), with a block-bootstrap 95 % interval and its spread over seeds. Every model is "
+    "also given the unpaired fidelity score (error distributions, coverage, clutter, false tracks; 0 = "
+    "indistinguishable) and the models are ranked by it; --ablations adds deliberately wrong models derived "
+    "from the fitted one (no_bias, wide_noise, low_pd, heavy_clutter, too_clean), which should rank below it."
 )
 
 
@@ -50,6 +53,12 @@ def register(app: typer.Typer) -> None:
             "--calibrate-bias",
             help="Give the tracker (on both datasets) the fitted bearing bias as its radar calibration (needs --fit-on).",
         ),
+        ablations: bool = typer.Option(
+            False,
+            "--ablations",
+            help="Also score wrong radar models derived from the fitted one: no_bias, wide_noise, low_pd, "
+            "heavy_clutter, too_clean (needs --fit-on).",
+        ),
         html: bool = typer.Option(True, "--html/--no-html", help="Also write the HTML report (index.html)."),
         progress: bool = typer.Option(
             True, "--progress/--no-progress", help="Progress bar (a line every 10 s when not a terminal)."
@@ -57,6 +66,7 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         from seatwin.cli.output import progress_counter, split_list
         from seatwin.fidelity import FidelityOptions, run_fidelity, write_fidelity
+        from seatwin.fidelity.ablations import ABLATIONS
         from seatwin.settings import validated
 
         opts = validated(
@@ -72,9 +82,11 @@ def register(app: typer.Typer) -> None:
                 "agents": split_list(agents, "agents"),
                 "seed0": seed,
                 "calibrate_bias": calibrate_bias,
+                "ablations": ablations,
             },
         )
-        n_steps = opts.seeds * (1 if opts.fit_on == "none" else 2)
+        n_models = 1 + (opts.fit_on != "none") + (len(ABLATIONS) if opts.ablations else 0)
+        n_steps = opts.seeds * n_models
         with progress_counter("fidelity (seeds × models)", progress, min_total=1) as advance:
             done = 0
 
@@ -98,5 +110,10 @@ def register(app: typer.Typer) -> None:
         )
         for label, m in result.models.items():
             for agent, d in m.agents.items():
-                typer.echo(f"  {label:<8} {agent:<6} AHED {num(d.ahed)}  floor {num(d.floor_ahed)}")
+                typer.echo(f"  {label:<13} {agent:<6} AHED {num(d.ahed)}  floor {num(d.floor_ahed)}")
+        typer.echo(f"ranking by fidelity score ({result.primary_agent}; lower is closer to the real data):")
+        for k, r in enumerate(result.ranking(), 1):
+            score = f"{num(r['score'])} [{num(r['ci_low'])}, {num(r['ci_high'])}]" if r["score"] is not None else "refused"
+            why = f"  ({r['reason']})" if r["reason"] else ""
+            typer.echo(f"  {k}. {r['model']:<13} score {score}  AHED {num(r['ahed'])}{why}")
         typer.echo("wrote " + ", ".join(str(p) for p in paths.values()))

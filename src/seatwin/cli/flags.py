@@ -2,10 +2,17 @@
 
 Library functions raise :class:`seatwin.errors.ParameterError` naming their Python parameter
 (``ray_drop``); the CLI prints the flag a user typed (``--ray-drop``). The default is the
-parameter with ``_`` → ``-``; :data:`FLAG_OF` lists the exceptions.
+parameter with ``_`` → ``-``; :data:`FLAG_OF` lists the exceptions. Old spellings of renamed flags
+stay as hidden options (:func:`old_spelling`, :func:`either`).
 """
 
 from __future__ import annotations
+
+from typing import Any, TypeVar
+
+from seatwin.errors import ParameterError
+
+T = TypeVar("T")
 
 FLAG_OF: dict[str, str] = {
     "fmt": "--format",
@@ -41,3 +48,22 @@ def flag_for(param: str) -> str:
     if param.startswith("-"):
         return param
     return FLAG_OF.get(param, "--" + param.replace("_", "-"))
+
+
+def old_spelling(old: str, new: str) -> Any:
+    """A hidden option ``old``, the former spelling of ``new``: it still works, ``--help`` shows only ``new``.
+
+    Declare it beside ``new`` with default None and merge the two with :func:`either`.
+    """
+    import typer
+
+    return typer.Option(None, old, hidden=True, help=f"Old spelling of {new}.")
+
+
+def either(value: T, old_value: T | None, default: T, new: str, old: str) -> T:
+    """``value`` of flag ``new``, or ``old_value`` when only its old spelling ``old`` was given (both: an error)."""
+    if old_value is None:
+        return value
+    if value != default:
+        raise ParameterError(new, f"given twice, as {new} and as its old spelling {old}: give {new} only")
+    return old_value

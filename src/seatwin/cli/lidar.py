@@ -6,6 +6,8 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.flags import either, old_spelling
+
 
 def register(app: typer.Typer) -> None:
     lidar_app = typer.Typer(help="Simulate the ownship's lidar along a scenario.", no_args_is_help=True)
@@ -14,23 +16,23 @@ def register(app: typer.Typer) -> None:
     @lidar_app.command("snapshot")
     def snapshot(
         scenario: str = typer.Argument(..., help="A built-in scenario name, a scenario .yaml or a Gemini .csv."),
-        offset: float = typer.Option(
-            0.0, "--offset", "--time", "-t", help="Start of the sweep, seconds after the scenario's start."
-        ),
+        offset: float = typer.Option(0.0, "--offset", "-t", help="Start of the sweep, seconds after the scenario's start."),
+        offset_old: float | None = old_spelling("--time", "--offset"),
         out: Path = typer.Option(None, "--out", "-o", help="PNG file to write."),
-        output: Path = typer.Option(None, "--output", hidden=True),
-        preset: str = typer.Option(
-            "vlp16", "--lidar-preset", "--preset", help="Lidar preset: vlp16 (1800 columns) or vlp16-thesis (1024)."
-        ),
-        lidar_mode: str = typer.Option(
-            "raycast", "--lidar-mode", "--range-model", help="Lidar range model: raycast (exact) or depthbuffer."
-        ),
+        output_old: str | None = old_spelling("--output", "--out"),
+        preset: str = typer.Option("vlp16", "--lidar-preset", help="Lidar preset: vlp16 (1800 columns) or vlp16-thesis (1024)."),
+        preset_old: str | None = old_spelling("--preset", "--lidar-preset"),
+        lidar_mode: str = typer.Option("raycast", "--lidar-mode", help="Lidar range model: raycast (exact) or depthbuffer."),
+        lidar_mode_old: str | None = old_spelling("--range-model", "--lidar-mode"),
         ray_drop: float = typer.Option(
-            None, "--ray-drop", "--drop", help="Ray-drop probability (default: the preset's, 0.8 as in the thesis)."
+            None, "--ray-drop", help="Ray-drop probability (default: the preset's, 0.8 as in the thesis)."
         ),
+        ray_drop_old: float | None = old_spelling("--drop", "--ray-drop"),
         extent: float = typer.Option(110.0, "--extent", help="Half-size of the plotted square around the ownship, in metres."),
         harbour: str = typer.Option(
-            None, "--harbour", help="Override the scenario's harbour: 'default', 'none' or a land raster .bin/.yaml."
+            None,
+            "--harbour",
+            help="Override the scenario's harbour: 'default', 'ravnkloa', 'none' or a land raster .bin/.yaml.",
         ),
     ) -> None:
         """One lidar sweep seen from above over the harbour, coloured by intensity, with the vessels' outlines."""
@@ -41,8 +43,11 @@ def register(app: typer.Typer) -> None:
         from seatwin.sensors.plot import plot_sweep_top_view
         from seatwin.world.scene import Scene
 
-        time, range_model, drop = offset, lidar_mode, ray_drop
-        output = out or output
+        time = either(offset, offset_old, 0.0, "--offset", "--time")
+        output = either(out, None if output_old is None else Path(output_old), None, "--out", "--output")
+        preset = either(preset, preset_old, "vlp16", "--lidar-preset", "--preset")
+        range_model = either(lidar_mode, lidar_mode_old, "raycast", "--lidar-mode", "--range-model")
+        drop = either(ray_drop, ray_drop_old, None, "--ray-drop", "--drop")
         if output is None:
             raise ParameterError("out", "give the PNG file to write (--out FILE.png)")
         sc = load_scenario(scenario)

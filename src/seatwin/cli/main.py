@@ -41,6 +41,7 @@ COMMAND_MODULES: list[str] = [
     "fidelity",
     "demo",
     "sweep",
+    "campaign",
     "camera",
     "labels",
     "serve",
@@ -69,7 +70,8 @@ for _name in COMMAND_MODULES:
 def run(argv: Sequence[str] | None = None) -> int:
     """Run the CLI with ``argv``; return the exit status (used by ``main`` and by tests)."""
     try:
-        app(args=list(argv) if argv is not None else None, prog_name="seatwin", standalone_mode=False)
+        # Without standalone mode, a command's typer.Exit(n) comes back as the return value, not an exception.
+        code = app(args=list(argv) if argv is not None else None, prog_name="seatwin", standalone_mode=False)
     except ParameterError as exc:
         typer.echo(f"seatwin: error: {exc.render(flag_for(exc.param))}", err=True)
         return 2
@@ -87,7 +89,7 @@ def run(argv: Sequence[str] | None = None) -> int:
     except typer.TyperException as exc:  # usage errors: unknown verb or option, bad value, missing option
         typer.echo(f"seatwin: error: {exc.format_message()}", err=True)
         return 2 if exc.exit_code in (1, 2) else exc.exit_code
-    return 0
+    return code if isinstance(code, int) else 0
 
 
 def main() -> None:

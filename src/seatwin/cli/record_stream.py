@@ -21,7 +21,8 @@ def register(app: typer.Typer) -> None:
         """Serve sensorstreaming.SensorStreaming and navigation.Navigation; record every message into a ROS bag.
 
         Lidar clouds → /<frame_id>/points (PointCloud2), camera images → /<frame_id>/image_raw,
-        radar spokes → /radar/spokes (mono8, a row per spoke), navigation → /ground_truth/<vessel>/...
+        radar spokes → /radar/spokes (mono8, a row per spoke) with /radar/spokes/azimuth (PointCloud2, a point per
+        spoke: its azimuth and time, the range start/increment), navigation → /ground_truth/<vessel>/...
         Ctrl-C or SIGTERM finishes the bag (manifest completed: true).
         """
         from seatwin.api.streaming import record_stream

@@ -24,24 +24,31 @@ def register(app: typer.Typer) -> None:
             "lidar",
             "--sensors",
             metavar="LIST",
-            help="Comma-separated ownship sensors: lidar, radar; 'none' for ground truth only.",
+            help="Comma-separated ownship sensors: lidar, radar, camera; 'none' for ground truth only.",
         ),
         lidar_mode: LidarMode = typer.Option(LidarMode.raycast, "--lidar-mode", help="Lidar range model."),
         lidar_preset: str = typer.Option("vlp16", "--lidar-preset", help="vlp16 (1800 columns) or vlp16-thesis (1024)."),
         fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Bag format."),
+        harbour: str = typer.Option(
+            "default",
+            "--harbour",
+            help="Harbour the poses are in: 'default', 'ravnkloa' (the Gemini scenarios' frame; the real land raster "
+            "from $SEATWIN_DATA or ../shared/data), 'none' or a land raster .bin/.yaml.",
+        ),
         stream: str | None = typer.Option(
             None,
             "--stream",
             metavar="HOST:PORT",
-            help="Also stream lidar clouds and radar spokes to this SensorStreaming server.",
+            help="Also stream lidar clouds, camera images and radar spokes to this SensorStreaming server.",
         ),
     ) -> None:
         """Serve Gemini's GeminiOSPInterface.Simulation (DoStep, SetStartTime) and record what the steps make.
 
         Each DoStep poses the vessels (north, east [m], heading [deg clockwise from north], in --vessels
         order) at `time` seconds since the SetStartTime POSIX start, runs every sensor due in the one
-        loop and records as `seatwin simulate` does, then answers (lock-step). Ctrl-C or SIGTERM
-        finishes the bag (manifest completed: true).
+        loop and records as `seatwin simulate` does, then answers (lock-step). Steps at negative
+        times are history before the start (no frames; the first frame's velocities then equal
+        `seatwin simulate`'s). Ctrl-C or SIGTERM finishes the bag (manifest completed: true).
         """
         from seatwin.api.server import serve
         from seatwin.cli.output import split_list, wait_for_sigint_or_sigterm
@@ -63,6 +70,7 @@ def register(app: typer.Typer) -> None:
             lidar_mode=lidar_mode.value,
             lidar_preset=lidar_preset,
             fmt=fmt.value,
+            harbour=harbour,
             radar_spokes=streamer is not None,
             on_frame=streamer.on_frame if streamer is not None else None,
         )

@@ -12,6 +12,7 @@ class LidarMode(str, Enum):
     raycast = "raycast"
     depthbuffer = "depthbuffer"
     depthbuffer_legacy = "depthbuffer-legacy"
+    depthbuffer_plane = "depthbuffer-plane"
 
 
 class BagFormat(str, Enum):
@@ -33,7 +34,10 @@ def register(app: typer.Typer) -> None:
             None, "--offset", help="Start this many seconds after the scenario's start (instead of --start)."
         ),
         harbour: str | None = typer.Option(
-            None, "--harbour", help="Harbour instead of the scenario's own: 'default', 'none' or a land raster .bin/.yaml."
+            None,
+            "--harbour",
+            help="Harbour instead of the scenario's own (a Gemini CSV's: ravnkloa; a built-in's: default): 'default', "
+            "'ravnkloa' (the real land raster, found in $SEATWIN_DATA or ../shared/data), 'none' or a land raster .bin/.yaml.",
         ),
         seed: int | None = typer.Option(None, "--seed", help="Seed of every random draw (default: the scenario's)."),
         lidar_mode: LidarMode = typer.Option(LidarMode.raycast, "--lidar-mode", help="Lidar range model."),
@@ -44,7 +48,10 @@ def register(app: typer.Typer) -> None:
         fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Bag format."),
         date: str | None = typer.Option(None, "--date", help="UTC date YYYY-MM-DD of a TimeOfDay CSV."),
         sensors: str = typer.Option(
-            "lidar", "--sensors", metavar="LIST", help="Comma-separated ownship sensors: lidar, radar, camera."
+            "lidar,camera",
+            "--sensors",
+            metavar="LIST",
+            help="Comma-separated ownship sensors: lidar, radar, camera (the thesis's twin: lidar and the three cameras).",
         ),
         radar: str | None = typer.Option(
             None, "--radar", metavar="RADAR.yaml", help="Radar configuration (default: the built-in model)."
@@ -62,7 +69,7 @@ def register(app: typer.Typer) -> None:
 
         Topics (defaults): /lidar/points (PointCloud2, VLP-16 layout of thesis Table 4.2),
         /radar/detections (with --sensors lidar,radar), /camera/{left,front,right}/image_raw|camera_info|labels
-        (with --sensors lidar,camera), /ground_truth/<vessel>/pose|odom|fix, /tf, /tf_static.
+        (camera: on by default), /ground_truth/<vessel>/pose|odom|fix, /tf, /tf_static.
         """
         from seatwin.cli.output import split_list
         from seatwin.cli.scenario import _date

@@ -11,15 +11,17 @@ from seatwin.cli.output import split_list
 from seatwin.errors import ParameterError
 
 _HELP = (
-    "Fidelity sweep: compare a reference synthetic dataset with copies made by deliberately degraded "
-    "lidar models at increasing strength, through the tracker and AHED (thesis 5.2).\n\n"
-    "Per seed, the scenario is simulated once with the reference model (VLP-16 preset, exact ray casting) "
-    "and once per (kind, strength) with a degraded one; each copy is compared with the reference run of the "
-    "same seed (shared random draws, so only the degradation differs). References of different seeds are "
-    "compared too: the seed-to-seed band shows how large a difference random draws alone make. Kinds: "
-    "noise (range σ, m), drop (ray-drop probability), dissipation (off/on), mount (yaw bias, deg; "
-    "/tf_static keeps the nominal mount). Writes sweep.csv, sweep.json (with Spearman ρ per kind), "
-    "sweep.png and the track files into --out."
+    "Fidelity sweep: does the fidelity score rank sensor models? A reference lidar model stands in for "
+    "reality; copies made by deliberately wrong models — degraded, or cleaner than the reference — are "
+    "compared with it through the tracker (fidelity score and AHED, thesis 5.2).\n\n"
+    "Per seed s, the reference model (VLP-16 ray casting with range noise 0.05 m, drop 0.8) is simulated "
+    "with seed s + --reference-seed-offset (the 'real' run) and with seed s, and once per (kind, strength) "
+    "with seed s; each is compared with the reference run of the other seed, as any real-versus-synthetic "
+    "comparison is (no shared draws). The reference model's own distance is the floor. Kinds: noise "
+    "(range σ, m), drop (ray-drop probability), dissipation (off/on), mount (yaw bias, deg; /tf_static keeps "
+    "the nominal mount). Every run is a job of the campaign engine (in this process, or on Ray with --workers "
+    "/ --address); each job's outcome is kept in --out/jobs, so re-running the command resumes. Writes "
+    "sweep.csv, sweep.json (Spearman ρ per kind, direction and seed) and sweep.png into --out."
 )
 
 
@@ -62,7 +64,7 @@ def register(app: typer.Typer) -> None:
             ...,
             "--out",
             metavar="DIR",
-            help="Folder for sweep.csv, sweep.json, sweep.png and tracks/ (must not hold an earlier sweep).",
+            help="Folder for sweep.csv, sweep.json, sweep.png and jobs/ (the same command again resumes a sweep there).",
         ),
         kinds: str = typer.Option(
             "noise,drop,dissipation,mount",
@@ -74,13 +76,20 @@ def register(app: typer.Typer) -> None:
             None,
             "--strengths",
             metavar="KIND=S,S;…",
-            help="Strengths per kind, e.g. 'noise=0.05,0.2;mount=1,2' (a bare list with one kind). Default: noise "
-            "0.05,0.1,0.2,0.4 m; drop 0.85,0.9,0.95,0.98; dissipation 1; mount 0.5,1,2,4 deg.",
+            help="Strengths per kind, e.g. 'noise=0,0.2;mount=1,2' (a bare list with one kind), on either side of the "
+            "reference where the kind allows (noise 0.05 m, drop 0.8). Default: noise 0,0.015,0.1,0.2,0.4 m; "
+            "drop 0,0.5,0.9,0.95,0.98; dissipation 1; mount 0.5,1,2,4 deg.",
         ),
         seeds: int = typer.Option(
             3, "--seeds", metavar="N", min=1, help="Repeat every point with seeds 1…N and show the spread."
         ),
         duration: float = typer.Option(30.0, "--duration", metavar="S", help="Simulated seconds per run."),
+        reference_seed_offset: int = typer.Option(
+            1000,
+            "--reference-seed-offset",
+            metavar="K",
+            help="The reference run of seed s uses seed s + K (0: seed-matched, sharing every random draw).",
+        ),
         offset: float | None = typer.Option(
             None,
             "--offset",
@@ -93,8 +102,16 @@ def register(app: typer.Typer) -> None:
             metavar="NAME|FILE",
             help="Tracker tuning for every run (preset synthetic, real, joyride, or a file).",
         ),
-        keep_recordings: bool = typer.Option(
-            False, "--keep-recordings", help="Keep every simulated recording under DIR/recordings (large)."
+        workers: int = typer.Option(
+            0,
+            "--workers",
+            metavar="N",
+            min=0,
+            help="0 (default): run in this process; N: on a local Ray instance of N CPUs, or at most N jobs in "
+            "flight with --address (results identical).",
+        ),
+        address: str | None = typer.Option(
+            None, "--address", metavar="RAY_ADDRESS", help="Run on this Ray cluster (e.g. ray://head:10001 or auto)."
         ),
         progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar."),
     ) -> None:
@@ -111,32 +128,27 @@ def register(app: typer.Typer) -> None:
                 "strengths": parse_strengths(strengths, chosen),
                 "seeds": tuple(range(1, seeds + 1)),
                 "duration": duration,
+                "reference_seed_offset": reference_seed_offset,
                 "offset": offset,
                 "tuning": tuning,
-                "keep_recordings": keep_recordings,
             },
         )
         check_output_dir(out, "out")
-        total, done = settings.n_steps(), 0
         with progress_counter("sweep", progress, min_total=1) as advance:
-
-            def step(_name: str) -> None:
-                nonlocal done
-                done += 1
-                advance(done, total)
-
-            result = run_sweep(out, settings, step=step)
+            result = run_sweep(out, settings, workers=workers, address=address, progress=advance)
         csv_path, json_path = write_results(out, result)
         png = plot_sweep(result, out / "sweep.png")
-        for kind, rho in spearman_by_kind(result).items():
+        for kind, by_dir in spearman_by_kind(result, "score").items():
             means = ", ".join(
-                f"{s.strength:g}: {s.ahed_mean:.3f}" if s.ahed_mean is not None else f"{s.strength:g}: –"
-                for s in summarise(result.kind_rows(kind))
+                f"{s.strength:g}: {s.mean:.3f}" if s.mean is not None else f"{s.strength:g}: –"
+                for s in summarise(result.kind_rows(kind), "score")
             )
-            r = rho.rho_points
-            typer.echo(f"{kind:12s} ρ = {r:.2f}  " if r is not None else f"{kind:12s} ρ = –     ", nl=False)
-            typer.echo(f"mean AHED by strength {means}")
-        mean, top = result.floor_mean_max()
-        if mean is not None:
-            typer.echo(f"seed-to-seed AHED: mean {mean:.3f}, max {top:.3f}")
+            typer.echo(f"{kind:12s} mean score by strength {means}")
+            for direction, r in by_dir.items():
+                band = "–" if r.seed_min is None else f"{r.seed_min:.2f}…{r.seed_max:.2f}"
+                pts = "–" if r.rho_points is None else f"{r.rho_points:.2f}"
+                typer.echo(f"{'':12s} {direction:8s} ρ = {pts} (per seed {band})")
+        floor = result.floor("score")
+        if floor:
+            typer.echo(f"floor (reference model vs the reference run of another seed): mean score {sum(floor) / len(floor):.3f}")
         typer.echo(f"wrote {csv_path}, {json_path}, {png}")

@@ -9,7 +9,8 @@ import typer
 _HELP = (
     "Track targets in a recording with the JIPDA tracker and extended Kalman filters (thesis ch. 5.1).\n\n"
     "Lidar sweeps are masked (ownship, land) and clustered; radar plots are masked and optionally merged; "
-    "each cluster/plot becomes a range-bearing measurement from the sensor in the world frame. Writes one "
+    "each cluster/plot becomes a range-bearing measurement from the sensor in the world frame; camera detections "
+    "(--detector) become bearings (thesis 5.1.3). Writes one "
     "row per (scan time, live track): time,track_id,existence,north,v_north,east,v_east, P00…P33 "
     "(row-major, that state order), confirmed; and a marker row (track_id −1) for scans without tracks."
 )
@@ -40,7 +41,7 @@ def register(app: typer.Typer) -> None:
         map_spec: str | None = typer.Option(
             None,
             "--map",
-            metavar="harbour|none|RASTER",
+            metavar="harbour|ravnkloa|none|RASTER",
             help=(
                 "Water mask for land/quay returns: the built-in harbour, none, or a raster (.yaml/.bin, Ravnkloa "
                 "format). Default: the recording's suggestion, else none."
@@ -66,6 +67,21 @@ def register(app: typer.Typer) -> None:
         agent: str = typer.Option(
             "jipda", "--agent", metavar="jipda|gnn", help="The tracker: JIPDA (thesis ch. 5.1) or global nearest neighbour."
         ),
+        detector: str = typer.Option(
+            "label",
+            "--detector",
+            metavar="label|onnx",
+            help=(
+                "Camera detector for --sensors ...,camera: 'label' (the recorded ground-truth labels with misses and box "
+                "noise) or 'onnx' (a YOLO-style ONNX model, --model, run on the recorded images)."
+            ),
+        ),
+        model: Path | None = typer.Option(
+            None, "--model", metavar="FILE.onnx", help="The onnx detector's model (YOLOv5/YOLOv8 export; never downloaded)."
+        ),
+        classes: str | None = typer.Option(
+            None, "--classes", metavar="ID[,ID…]", help="Class ids the onnx detector keeps (default: 8, COCO 'boat')."
+        ),
         progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar on long recordings."),
     ) -> None:
         from seatwin.cli.output import check_output_file, progress_counter, split_list
@@ -84,6 +100,9 @@ def register(app: typer.Typer) -> None:
                 eps=eps,
                 min_points=min_points,
                 agent=agent,
+                detector=detector,
+                model=None if model is None else str(model),
+                classes=None if classes is None else split_list(classes, "classes"),
             ),
         )
         with progress_counter("tracking", enabled=progress) as advance:

@@ -29,6 +29,7 @@ from seatwin.evaluation.association import DEFAULT_GATE_M
 from seatwin.evaluation.evaluate import Evaluation, evaluate
 from seatwin.evaluation.hellinger import FORMS, HellingerForm, covdiff, hellinger
 from seatwin.evaluation.metrics import rms
+from seatwin.evaluation.score import FidelityScore, ScoreOptions, score_runs
 from seatwin.evaluation.tracks_io import Tracks
 from seatwin.evaluation.truth import TruthSet
 
@@ -47,6 +48,8 @@ class CompareOptions:
     form: HellingerForm = "standard"
     both_missing: BothMissing = "skip"
     confidence: float = 0.95
+    score: ScoreOptions = field(default_factory=ScoreOptions)
+    """Conventions of the unpaired fidelity score (:mod:`seatwin.evaluation.score`)."""
 
     def __post_init__(self) -> None:
         if self.form not in FORMS:
@@ -135,6 +138,11 @@ class TargetComparison:
     rmse_difference_rms: float | None
     anees_real: float | None
     anees_synthetic: float | None
+    score: float | None = None
+    """The unpaired fidelity score (S3) of this target; None when refused (``score_reason``)."""
+    score_ci_low: float | None = None
+    score_ci_high: float | None = None
+    score_reason: str | None = None
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -150,6 +158,7 @@ class Comparison:
     synthetic: Evaluation
     series: dict[str, ComparisonSeries] = field(default_factory=dict)
     targets: list[TargetComparison] = field(default_factory=list)
+    score: FidelityScore | None = None
 
 
 def _num(x: float) -> float | None:
@@ -269,8 +278,11 @@ def compare(
     ev_r = evaluate(real, truth, options.gate, options.confirmed_only, options.confidence, mask)
     ev_s = evaluate(synthetic, truth, options.gate, options.confirmed_only, options.confidence, mask)
     result = Comparison(tuning, options, ev_r, ev_s)
+    result.score = score_runs([real], [synthetic], truth, [ev_r], [ev_s], options.score)
     for name in truth.names:
         series, line = compare_target(ev_r, ev_s, truth, name, tuning, options)
+        s = result.score.targets[name]
+        line.score, line.score_ci_low, line.score_ci_high, line.score_reason = s.value, s.ci_low, s.ci_high, s.reason
         result.series[name] = series
         result.targets.append(line)
     return result
@@ -292,6 +304,7 @@ def comparison_table(comparisons: list[Comparison]) -> dict:
     opts = comparisons[0].options if comparisons else CompareOptions()
     return {
         "targets": lines,
+        "score_by_tuning": {c.tuning: c.score and c.score.to_dict() for c in comparisons},
         "ahed_mean": float(np.mean(values)) if values else None,
         "ahed_n": len(values),
         "ahed_mean_by_tuning": by_tuning,

@@ -36,6 +36,19 @@ PSD_RTOL = 1e-9
 """A covariance whose smallest eigenvalue is below −PSD_RTOL × its largest is rejected."""
 
 
+@dataclass(frozen=True)
+class PlotLog:
+    """The positional measurements (plots, cluster centroids) the tracker was given: per scan, its time and
+    (M, 2) north/east. Kept in memory beside the tracks for plot-level statistics (clutter); a track file
+    does not store it."""
+
+    times: NDArray[np.float64]
+    positions: tuple[NDArray[np.float64], ...]
+    shapes: tuple[NDArray[np.float64], ...] | None = None
+    """Per scan, (M, 2) shape features of lidar clusters: log point count, log(thickness + 1 cm)
+    (:func:`seatwin.perception.cluster.minor_spread`); None for sensors without cluster shapes."""
+
+
 @dataclass
 class Tracks:
     """A tracker's output: ``n`` rows sorted by (time, track_id) and the tracker's scan times.
@@ -53,6 +66,8 @@ class Tracks:
     confirmed: NDArray[np.bool_]
     scan_times: NDArray[np.float64] = field(default_factory=lambda: np.empty(0))
     source: str = "<memory>"
+    plots: PlotLog | None = None
+    """The plots behind the tracks, when they were tracked in this process (never read from a track file)."""
 
     def __post_init__(self) -> None:
         self.time = np.asarray(self.time, dtype=float).reshape(-1)
@@ -85,6 +100,7 @@ class Tracks:
             self.confirmed[m],
             self.scan_times,
             self.source,
+            self.plots,
         )
 
     def confirmed_only(self) -> Tracks:

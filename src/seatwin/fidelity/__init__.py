@@ -4,6 +4,7 @@
 * :class:`FidelityOptions` — every choice of a run (:mod:`.options`).
 * :func:`seatwin.fidelity.report.write_fidelity` — ``fidelity.json``, ``fidelity.md``, ``index.html``.
 * :mod:`seatwin.fidelity.joyride` — the dataset and its synthetic replica.
+* :mod:`seatwin.fidelity.ablations` — deliberately wrong radar models, ranked below the fitted one by the score.
 """
 
 from seatwin.fidelity.method import run_fidelity

@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 from seatwin.errors import InputError, ParameterError
 
 if TYPE_CHECKING:
+    from seatwin.evaluation import Tracks
     from seatwin.scenario.model import Scenario
     from seatwin.sensors.radar.config import RadarConfig
     from seatwin.sensors.radar.fit import RadarObservations
@@ -91,24 +92,66 @@ def heading_from_velocity(
     return h[idx]
 
 
-def replica_scenario(data: JoyrideData, target_size: tuple[float, float, float] = TARGET_SIZE) -> Scenario:
-    """A :class:`seatwin.scenario.Scenario` of the two boats (headings from velocity)."""
+AWAY_M = 1.0e6
+"""Where an un-truthed vessel waits outside the span it was tracked over: far beyond any radar's range."""
+
+
+def untruthed_vessels(
+    tracks: Tracks, data: JoyrideData, gate_m: float, min_scans: int = 20, share: float = 0.9
+) -> dict[str, NDArray[np.float64]]:
+    """Vessels without ground truth that the real tracker followed: confirmed tracks farther than ``gate_m``
+    from the target in at least ``share`` of their confirmed instants, over at least ``min_scans`` scans.
+    Per vessel (``untruthed1`` …), its ``[time, north, v_north, east, v_east]`` rows (the track's estimates).
+
+    The dataset has GNSS truth for the target only; a boat it does not list is still part of the real
+    scene, and a replica without it cannot produce the plots and tracks it causes."""
+    out: dict[str, NDArray[np.float64]] = {}
+    conf = tracks.confirmed
+    for k in np.unique(tracks.track_id[conf]):
+        m = conf & (tracks.track_id == k)
+        t = tracks.time[m]
+        tn, te = np.interp(t, data.time, data.target[:, 0]), np.interp(t, data.time, data.target[:, 2])
+        off = np.hypot(tracks.state[m, 0] - tn, tracks.state[m, 2] - te) > gate_m
+        if len(t) >= min_scans and off.mean() >= share:
+            out[f"untruthed{len(out) + 1}"] = np.column_stack([t, tracks.state[m]])
+    return out
+
+
+def replica_scenario(
+    data: JoyrideData,
+    target_size: tuple[float, float, float] = TARGET_SIZE,
+    extra: dict[str, NDArray[np.float64]] | None = None,
+) -> Scenario:
+    """A :class:`seatwin.scenario.Scenario` of the two boats (headings from velocity), plus ``extra`` vessels
+    (:func:`untruthed_vessels`, the target's size; far away outside the span they were tracked over)."""
     from seatwin.scenario.model import Dimensions, Role, Scenario, Trajectory, Vessel
 
-    def traj(x: NDArray[np.float64]) -> Trajectory:
-        return Trajectory(data.time, x[:, 0], x[:, 2], heading_from_velocity(x[:, 1], x[:, 3]), source=data.source)
+    def traj(time: NDArray[np.float64], x: NDArray[np.float64]) -> Trajectory:
+        return Trajectory(time, x[:, 0], x[:, 2], heading_from_velocity(x[:, 1], x[:, 3]), source=data.source)
 
-    own = Vessel(OWNSHIP, Role.OWNSHIP, traj(data.ownship), model="generic", dimensions=Dimensions(10.0, 3.0, 2.5))
-    tgt = Vessel(TARGET, Role.TARGET, traj(data.target), model="generic", dimensions=Dimensions(*target_size))
-    return Scenario("joyride-replica", [own, tgt], environment={"harbour": "none", "water": "flat"}, rig=None, source=data.source)
+    own = Vessel(OWNSHIP, Role.OWNSHIP, traj(data.time, data.ownship), model="generic", dimensions=Dimensions(10.0, 3.0, 2.5))
+    vessels = [
+        own,
+        Vessel(TARGET, Role.TARGET, traj(data.time, data.target), model="generic", dimensions=Dimensions(*target_size)),
+    ]
+    for name, rows in (extra or {}).items():
+        outside = data.time[(data.time < rows[0, 0]) | (data.time > rows[-1, 0])]
+        time = np.concatenate([outside, rows[:, 0]])
+        states = np.vstack([np.tile([AWAY_M, 0.0, AWAY_M, 0.0], (len(outside), 1)), rows[:, 1:]])
+        order = np.argsort(time, kind="stable")
+        time, states = time[order], states[order]
+        vessels.append(Vessel(name, Role.TARGET, traj(time, states), model="generic", dimensions=Dimensions(*target_size)))
+    return Scenario("joyride-replica", vessels, environment={"harbour": "none", "water": "flat"}, rig=None, source=data.source)
 
 
-def replica_scene(data: JoyrideData, target_size: tuple[float, float, float] = TARGET_SIZE) -> Scene:
-    """The scene: no static world, the two vessels with generic hulls of their sizes."""
+def replica_scene(
+    data: JoyrideData, target_size: tuple[float, float, float] = TARGET_SIZE, extra: dict[str, NDArray[np.float64]] | None = None
+) -> Scene:
+    """The scene: no static world, the vessels with generic hulls of their sizes."""
     from seatwin.world.scene import Scene
     from seatwin.world.vessels import vessel_model
 
-    sc = replica_scenario(data, target_size)
+    sc = replica_scenario(data, target_size, extra)
     vessels = {v.name: (vessel_model(v.model, v.dimensions, sc.source), v.trajectory) for v in sc.vessels}
     return Scene([], vessels)
 

@@ -12,6 +12,10 @@
 4. :func:`seatwin.evaluation.compare` gives HED (5.30), COVDIFF (5.31) per common instant;
    AHED (5.34) is averaged over the evaluation window, with a circular block bootstrap 95 %
    interval (blocks of consecutive instants, pooled over seeds) and its spread over seeds.
+5. The unpaired fidelity score (:mod:`seatwin.evaluation.score`) of each model and agent on the
+   evaluation window: the real run against all seeds pooled. With ``ablations``, deliberately
+   wrong models derived from the fitted one (:mod:`seatwin.fidelity.ablations`) are scored too,
+   and the models are ranked by the score.
 """
 
 from __future__ import annotations
@@ -22,6 +26,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
+from seatwin.fidelity.ablations import ablated_models
 from seatwin.fidelity.joyride import (
     TARGET,
     TARGET_SIZE,
@@ -30,18 +35,26 @@ from seatwin.fidelity.joyride import (
     observations,
     replica_scene,
     simulate_replica,
+    untruthed_vessels,
 )
 from seatwin.fidelity.options import FidelityOptions
 from seatwin.fidelity.results import AgentResult, FidelityResult, ModelResult, OffTarget, PlotStatistics, SeedResult, WindowStats
 from seatwin.settings import validated
 
 if TYPE_CHECKING:
-    from seatwin.evaluation import Tracks, TruthSet
-    from seatwin.evaluation.compare import ComparisonSeries
+    from seatwin.evaluation import Evaluation, Tracks, TruthSet
+    from seatwin.evaluation.compare import CompareOptions, ComparisonSeries
+    from seatwin.evaluation.score import FidelityScore, ScoreOptions
     from seatwin.perception.measurements import Scan
     from seatwin.sensors.radar.config import RadarConfig
     from seatwin.tracking import TrackerConfig
     from seatwin.world.scene import Scene
+
+
+RADAR_CLUTTER_GATE_M = 60.0
+"""Plots and confirmed tracks farther than this from the target are clutter and off-target tracks: the
+radar's plots scatter tens of metres about the target, and a model's own scattered target plots must
+not count as clutter (plot statistics, off-target tracks and the score's plot terms alike)."""
 
 
 def tracker_scans(time: NDArray[np.float64], plots: list[NDArray[np.float64]], antenna: NDArray[np.float64]) -> list[Scan]:
@@ -72,6 +85,7 @@ def block_bootstrap_ci(
 ) -> tuple[float, float]:
     """Percentile interval of the mean of all ``values`` (one array per seed, in time order)
     under a circular block bootstrap within each array (blocks of ``block`` consecutive values)."""
+    from seatwin.evaluation.bootstrap import circular_block_indices, percentile_interval
     from seatwin.rng import frame_rng
 
     vals = [np.asarray(v, float) for v in values if len(v)]
@@ -82,22 +96,20 @@ def block_bootstrap_ci(
     for b in range(n_boot):
         tot, cnt = 0.0, 0
         for v in vals:
-            n = len(v)
-            L = max(1, min(block, n // 3))  # blocks shorter than the series, or the resample is a rotation
-            k = int(np.ceil(n / L))
-            starts = rng.integers(0, n, k)
-            idx = ((starts[:, None] + np.arange(L)[None, :]) % n).ravel()[:n]  # circular: no edge bias
-            tot += float(v[idx].sum())
-            cnt += n
+            tot += float(v[circular_block_indices(len(v), block, rng)].sum())
+            cnt += len(v)
         means[b] = tot / cnt
-    a = (1 - level) / 2
-    return (float(np.quantile(means, a)), float(np.quantile(means, 1 - a)))
+    return percentile_interval(means, level)  # type: ignore[return-value]
+
+
+def in_window(times: NDArray[np.float64], window: tuple[float, float]) -> NDArray[np.bool_]:
+    """Which ``times`` lie in ``window`` (POSIX, inclusive, to 1 ns)."""
+    return (times >= window[0] - 1e-9) & (times <= window[1] + 1e-9)
 
 
 def window_stats(series: ComparisonSeries, window: tuple[float, float], seed: int) -> WindowStats:
     """The comparison ``series`` of one seed restricted to ``window`` (POSIX, inclusive)."""
-    t0, t1 = window
-    w = (series.time >= t0 - 1e-9) & (series.time <= t1 + 1e-9)
+    w = in_window(series.time, window)
     common = series.has_real & series.has_synthetic & w
     only_r = series.has_real & ~series.has_synthetic & w
     only_s = series.has_synthetic & ~series.has_real & w
@@ -124,7 +136,7 @@ def window_stats(series: ComparisonSeries, window: tuple[float, float], seed: in
 
 
 def plot_statistics(
-    data: JoyrideData, plots: list[NDArray[np.float64]], idx: NDArray[np.int64], gate_m: float = 60.0
+    data: JoyrideData, plots: list[NDArray[np.float64]], idx: NDArray[np.int64], gate_m: float = RADAR_CLUTTER_GATE_M
 ) -> PlotStatistics:
     """Simple statistics of a recording over scans ``idx``: plots per scan, target detection rate, clutter per scan."""
     n_pl, det, clut = 0, 0, 0
@@ -138,10 +150,12 @@ def plot_statistics(
     return PlotStatistics(n_pl / n, det / n, clut / n)
 
 
-def off_target_tracks(tracks: Tracks, data: JoyrideData, window: tuple[float, float], gate_m: float = 60.0) -> OffTarget:
+def off_target_tracks(
+    tracks: Tracks, data: JoyrideData, window: tuple[float, float], gate_m: float = RADAR_CLUTTER_GATE_M
+) -> OffTarget:
     """Confirmed tracks away from the target (> ``gate_m``) in the window: un-truthed vessels or persistent clutter."""
     t = tracks.time
-    m = tracks.confirmed & (t >= window[0] - 1e-9) & (t <= window[1] + 1e-9)
+    m = tracks.confirmed & in_window(t, window)
     if not m.any():
         return OffTarget(0, 0)
     tn = np.interp(t[m], data.time, data.target[:, 0])
@@ -164,10 +178,47 @@ def floor_stats(
     ]
 
 
+def window_evaluation(tracks: Tracks, truth: TruthSet, window: tuple[float, float], options: CompareOptions) -> Evaluation:
+    """:func:`seatwin.evaluation.evaluate` of the track rows inside ``window`` (so that false tracks, too,
+    are counted there only), with the comparison's conventions."""
+    from seatwin.evaluation import evaluate
+
+    inside = tracks.select(in_window(tracks.time, window))
+    return evaluate(inside, truth, options.gate, options.confirmed_only, options.confidence)
+
+
+def score_options(opts: FidelityOptions) -> ScoreOptions:
+    """The score's conventions for a fidelity run: its bootstrap size, block length and seed."""
+    from seatwin.evaluation.score import ScoreOptions
+
+    return ScoreOptions(n_boot=opts.n_boot, block=opts.block, seed=opts.seed0, clutter_gate=RADAR_CLUTTER_GATE_M)
+
+
+def window_score(
+    real: Tracks, synthetic: list[Tracks], truth: TruthSet, window: tuple[float, float], options: ScoreOptions
+) -> FidelityScore:
+    """The unpaired fidelity score (:func:`seatwin.evaluation.score.fidelity_score`) of the synthetic runs
+    (all seeds pooled) against the real run, on ``window``: target errors and coverage, clutter plots per
+    scan and plot shapes (from the runs' plot logs; radar plots carry no shape) and false tracks, all
+    inside the window."""
+    from seatwin.evaluation import CompareOptions
+    from seatwin.evaluation.score import score_runs
+
+    copts = CompareOptions(score=options)
+    evals_real = [window_evaluation(real, truth, window, copts)]
+    evals_synth = [window_evaluation(s, truth, window, copts) for s in synthetic]
+    return score_runs([real], synthetic, truth, evals_real, evals_synth, options, window)
+
+
 def _agent_result(
-    runs: list[WindowStats], floor: list[WindowStats], off_synthetic: list[OffTarget], off_real: OffTarget, opts: FidelityOptions
+    runs: list[WindowStats],
+    floor: list[WindowStats],
+    off_synthetic: list[OffTarget],
+    off_real: OffTarget,
+    opts: FidelityOptions,
+    score: FidelityScore | None = None,
 ) -> AgentResult:
-    """Pool one agent's seeds: AHED over every common instant, its block-bootstrap interval, the floor."""
+    """Pool one agent's seeds: AHED over every common instant, its block-bootstrap interval, the floor; the score."""
     vals = [r.ahed for r in runs if r.ahed is not None]
     ci = block_bootstrap_ci([r.hed for r in runs], opts.n_boot, opts.block, seed=opts.seed0)
     all_hed = np.concatenate([r.hed for r in runs]) if runs else np.empty(0)
@@ -198,6 +249,10 @@ def _agent_result(
         rmse_real_mean=_nanmean([r.rmse_real for r in runs]),
         rmse_synthetic_mean=_nanmean([r.rmse_synthetic for r in runs]),
         per_seed=[SeedResult.of(r) for r in runs],
+        score=score and score.overall.value,
+        score_ci=None if score is None or score.overall.ci_low is None else (score.overall.ci_low, score.overall.ci_high),
+        score_reason=score.overall.reason if score is not None else "not computed",
+        score_parts=score.to_dict() if score is not None else {},
     )
 
 
@@ -220,7 +275,7 @@ def evaluate_model(
 
     scene = scene or replica_scene(data)
     truth = truth_of(data)
-    idx_w = np.flatnonzero((data.time >= window[0] - 1e-9) & (data.time <= window[1] + 1e-9))
+    idx_w = np.flatnonzero(in_window(data.time, window))
     runs: dict[str, list[WindowStats]] = {a: [] for a in opts.agents}
     synth_tracks: dict[str, list[Tracks]] = {a: [] for a in opts.agents}
     off_target: dict[str, list[OffTarget]] = {a: [] for a in opts.agents}
@@ -246,8 +301,9 @@ def evaluate_model(
             step(f"model {label}, seed {seed}")
     for agent in opts.agents:
         floor = floor_stats(synth_tracks[agent], opts.seed0, truth, window, opts.tuning)
+        score = window_score(real_tracks[agent], synth_tracks[agent], truth, window, score_options(opts))
         result.agents[agent] = _agent_result(
-            runs[agent], floor, off_target[agent], off_target_tracks(real_tracks[agent], data, window), opts
+            runs[agent], floor, off_target[agent], off_target_tracks(real_tracks[agent], data, window), opts, score
         )
     return result
 
@@ -288,6 +344,8 @@ def run_fidelity(
         fit = fit_radar(obs, base, n_boot=opts.fit_boot, clutter=opts.clutter, seed=opts.seed0)
         models["fitted"] = fit.config
         fit_report = fit.report
+        if opts.ablations:
+            models |= ablated_models(fit.config)
     tuning = load_tuning(opts.tuning)
     if opts.calibrate_bias:
         bias = float(np.radians(models["fitted"].noise.bearing_bias_deg))
@@ -296,7 +354,9 @@ def run_fidelity(
     antenna = antenna_positions(data, base)
     real_scans = tracker_scans(data.time, data.plots, antenna)
     real_tracks = {a: run_agent(real_scans, tuning, a) for a in opts.agents}
-    idx_w = np.flatnonzero((data.time >= window[0] - 1e-9) & (data.time <= window[1] + 1e-9))
+    extra = untruthed_vessels(real_tracks[opts.agents[0]], data, RADAR_CLUTTER_GATE_M) if opts.untruthed_vessels else {}
+    sim_scene = replica_scene(data, extra=extra) if extra else scene
+    idx_w = np.flatnonzero(in_window(data.time, window))
     return FidelityResult(
         dataset=str(path),
         n_scans=n,
@@ -313,10 +373,13 @@ def run_fidelity(
             "heading": "from velocity (the dataset has none); held below 0.5 m/s",
             "target_size_m": list(TARGET_SIZE),
             "scan_posing": f"radar pose_at={base.pose_at!r} ('scan': world posed once per scan at its stamp)",
+            "untruthed_vessels": {
+                name: {"from": float(rows[0, 0]), "to": float(rows[-1, 0]), "scans": len(rows)} for name, rows in extra.items()
+            },
         },
         radar_fit=fit_report,
         models={
-            label: evaluate_model(data, cfg, opts, window, real_tracks, tuning, scene, label, step)
+            label: evaluate_model(data, cfg, opts, window, real_tracks, tuning, sim_scene, label, step)
             for label, cfg in models.items()
         },
         primary_model="fitted" if "fitted" in models else "default",

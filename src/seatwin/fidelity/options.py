@@ -36,6 +36,17 @@ class FidelityOptions(Settings):
         description="Set the tuning's radar bearing_bias to the fitted bearing bias (both datasets, every "
         "model; estimated on the fit's scans only, so no peeking with first-half).",
     )
+    untruthed_vessels: bool = Field(
+        True,
+        description="Add to the replica the vessels without ground truth that the real tracker follows away from the "
+        "target (from the real tracks: seatwin.fidelity.joyride.untruthed_vessels); the radar models are compared "
+        "on the same scene as reality, not on a scene missing a boat.",
+    )
+    ablations: bool = Field(
+        False,
+        description="Also score deliberately wrong radar models derived from the fitted one (no_bias, wide_noise, "
+        "low_pd, heavy_clutter, too_clean: seatwin.fidelity.ablations); the fitted model should rank first.",
+    )
 
     @field_validator("agents")
     @classmethod
@@ -44,7 +55,7 @@ class FidelityOptions(Settings):
             raise ValueError("an agent is repeated")
         return v
 
-    @field_validator("calibrate_bias")
+    @field_validator("calibrate_bias", "ablations")
     @classmethod
     def _needs_fit(cls, v: bool, info: ValidationInfo) -> bool:
         if v and info.data.get("fit_on") == "none":

@@ -103,6 +103,104 @@ def diagnosis(result: FidelityResult) -> list[str]:
     return out
 
 
+RANKING_NOTE = (
+    "Score: the unpaired fidelity score (S5) of the synthetic runs (all seeds pooled) against the real run on the "
+    "evaluation window, with its circular block bootstrap 95 % interval; its parts: the mean target score (error "
+    "distribution Hellinger and coverage difference), the Poisson Hellinger distances of clutter plots per scan "
+    "and of false tracks alive per scan (and a plot-shape term where plots carry shapes, e.g. lidar clusters). "
+    "Lower is closer to the real data. AHED and the instant counts (means over seeds) "
+    "are the paired measure (5.34), shown beside it."
+)
+
+
+def ranking_markdown(result: FidelityResult) -> list[str]:
+    """The ranking table (primary agent; :meth:`FidelityResult.ranking`) as Markdown lines."""
+    lines = [
+        f"## Models ranked by fidelity score (agent `{result.primary_agent}`)",
+        "",
+        "| rank | model | score | 95 % CI | targets | clutter | false tracks | AHED | common | only real | only synthetic |",
+        "|---:|---|---:|---|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    notes = []
+    for k, r in enumerate(result.ranking(), 1):
+        score = _f(r["score"]) if r["score"] is not None else "refused"
+        lines.append(
+            f"| {k} | {r['model']} | {score} | {_ci((r['ci_low'], r['ci_high']))} | {_f(r['targets'])} | "
+            f"{_f(r['clutter'])} | {_f(r['false_tracks'])} | {_f(r['ahed'])} | {_f(r['n_common'], '.1f')} | "
+            f"{_f(r['n_only_real'], '.1f')} | {_f(r['n_only_synthetic'], '.1f')} |"
+        )
+        if r["reason"]:
+            notes.append((r["model"], r["reason"]))
+    if len(notes) > 1 and len({why for _, why in notes}) == 1 and len(notes) == len(lines) - 4:
+        bullets = [f"* every model: {notes[0][1]}"]
+    else:
+        bullets = [f"* `{model}`: {why}" for model, why in notes]
+    return [*lines, "", *bullets, *([""] if bullets else []), RANKING_NOTE, ""]
+
+
+def ranking_figure(rows: list[dict[str, Any]], title: str) -> bytes:
+    """The fidelity score with its 95 % interval per model (ranked) and AHED beside it, as PNG."""
+    from seatwin.report.figures import _plt, to_png
+
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(max(6.0, 1.0 * len(rows)), 3.8))
+    x = np.arange(len(rows))
+    score = np.array([np.nan if r["score"] is None else r["score"] for r in rows], dtype=float)
+    lo = np.array([np.nan if r["ci_low"] is None else r["ci_low"] for r in rows], dtype=float)
+    hi = np.array([np.nan if r["ci_high"] is None else r["ci_high"] for r in rows], dtype=float)
+    ahed = np.array([np.nan if r["ahed"] is None else r["ahed"] for r in rows], dtype=float)
+    err = np.vstack([np.nan_to_num(score - lo), np.nan_to_num(hi - score)])
+    ax.errorbar(x - 0.1, score, yerr=err, fmt="o", color="#d62728", capsize=4, label="fidelity score (95 % CI)")
+    ax.plot(x + 0.1, ahed, "s", color="#1f77b4", label="AHED (5.34)")
+    for xi, s in zip(x, score):
+        if np.isnan(s):  # refused: shown as such, never as a value
+            ax.text(xi, 0.05, "refused", rotation=90, ha="center", va="bottom", fontsize=8, color="0.4")
+    ax.set_xticks(x, [r["model"] for r in rows], fontsize=8)
+    ax.set_ylim(0, 1.02)
+    ax.set_ylabel("distance (lower is closer)")
+    ax.grid(alpha=0.3, axis="y")
+    ax.legend(fontsize=8)
+    ax.set_title(title)
+    return to_png(fig)
+
+
+def ranking_html(result: FidelityResult) -> str:
+    """The ranking section of ``index.html``: the table and :func:`ranking_figure`."""
+    import html as h
+
+    from seatwin.report.html import _img, _table
+
+    rows = result.ranking()
+    table = [
+        [
+            str(k),
+            h.escape(r["model"]),
+            "refused" if r["score"] is None else _f(r["score"]),
+            _ci((r["ci_low"], r["ci_high"])),
+            _f(r["targets"]),
+            _f(r["clutter"]),
+            _f(r["false_tracks"]),
+            _f(r["ahed"]),
+            _f(r["n_common"], ".1f"),
+            _f(r["n_only_real"], ".1f"),
+            _f(r["n_only_synthetic"], ".1f"),
+            h.escape(r["reason"] or ""),
+        ]
+        for k, r in enumerate(rows, 1)
+    ]
+    header = ["rank", "model", "score", "95 % CI", "targets", "clutter", "false tracks", "AHED", "common", "only real"]
+    header += ["only synthetic", "note"]
+    title = f"Models ranked by fidelity score (agent {result.primary_agent})"
+    return "\n".join(
+        [
+            f"<h2>{h.escape(title)}</h2>",
+            _table(header, table, left=2),
+            _img(ranking_figure(rows, title), "fidelity score by model"),
+            f'<p class="note">{h.escape(RANKING_NOTE)}</p>',
+        ]
+    )
+
+
 def render_markdown(result: FidelityResult) -> str:
     """``fidelity.md``: the summary a person reads."""
     prim = result.primary
@@ -116,6 +214,11 @@ def render_markdown(result: FidelityResult) -> str:
         f"**AHED = {_f(prim.ahed)}**, 95 % interval {_ci(prim.ahed_ci)} "
         f"(model `{result.primary_model}`, agent `{result.primary_agent}`; spread over seeds ±{_f(prim.ahed_seed_std)}).",
         "",
+        f"**Fidelity score = {_f(prim.score)}**, 95 % interval {_ci(prim.score_ci)}"
+        + (f" ({prim.score_reason})" if prim.score_reason else "")
+        + " — the unpaired score of the error distributions, coverage, clutter and false tracks (0: indistinguishable).",
+        "",
+        *ranking_markdown(result),
         "## AHED by radar model and agent",
         "",
         "| model | agent | AHED | 95 % CI | seed std | AHED (printed 5.30) | floor (synt. vs synt.) | mean COVDIFF | common "
@@ -178,6 +281,10 @@ def render_markdown(result: FidelityResult) -> str:
         "circular block bootstrap (blocks of up to 10 consecutive instants, at most a third of a series, "
         "pooled over seeds).",
         "* Floor: the same comparison between two synthetic recordings of the same model (seeds s, s+1).",
+        "* Fidelity score (seatwin.evaluation.score, S1–S5): never pairs instants; per target the Hellinger distance "
+        "of Gaussians fitted to the tracker's position errors (real versus all seeds pooled) combined with the "
+        "coverage difference, and plot-level Poisson Hellinger terms for clutter plots per scan (plots farther than "
+        "the clutter gate from the target) and false tracks per run; everything inside the evaluation window.",
         "* Headings from velocity (the dataset has none); target box size assumed; world posed once per scan.",
         "* `n_common`, `n_only_real`, `n_only_synthetic` are means over seeds.",
         "* `index.html` (the comparison report) shows seed 0 of each model over the whole recording; the "
@@ -201,7 +308,7 @@ def write_fidelity(out_dir: str | Path, result: FidelityResult, html: bool = Tru
 
 def _html(out: Path, result: FidelityResult) -> Path:
     from seatwin.fidelity.method import truth_of
-    from seatwin.report import Clouds, ScenarioResult, write_report
+    from seatwin.report import Clouds, ScenarioResult
 
     data = result.data
     truth = truth_of(data)
@@ -235,4 +342,10 @@ def _html(out: Path, result: FidelityResult) -> Path:
                     )
                 )
         results.append(ScenarioResult(f"joyride, {label} radar model (seed {result.seed0})", comps, truth, clouds, notes))
-    return write_report(out, results, title="seatwin fidelity: joyride real versus synthetic radar")
+    from seatwin.report import render_report
+
+    page = render_report(results, title="seatwin fidelity: joyride real versus synthetic radar")
+    at = page.index("<h2>")  # the ranking leads the page, before the per-model comparisons
+    path = out / "index.html"
+    path.write_text(page[:at] + ranking_html(result) + "\n" + page[at:], encoding="utf-8")
+    return path

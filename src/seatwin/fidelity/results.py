@@ -109,6 +109,15 @@ class AgentResult:
     rmse_real_mean: float | None
     rmse_synthetic_mean: float | None
     per_seed: list[SeedResult]
+    score: float | None = None
+    """The unpaired fidelity score (S5, :mod:`seatwin.evaluation.score`) on the evaluation window, all seeds
+    pooled against the real run (0 = the same error distributions, coverage, clutter and false tracks); None
+    when refused (``score_reason``)."""
+    score_ci: tuple[float, float] | None = None
+    score_reason: str | None = None
+    """Why the score is refused, or which plot-level terms it is without."""
+    score_parts: dict[str, Any] = field(default_factory=dict)
+    """:meth:`seatwin.evaluation.score.FidelityScore.to_dict`: per target, clutter and false-track terms with their counts."""
 
     @property
     def only_one_fraction(self) -> float:
@@ -173,6 +182,33 @@ class FidelityResult:
     def primary(self) -> AgentResult:
         return self.models[self.primary_model].agents[self.primary_agent]
 
+    def ranking(self, agent: str | None = None) -> list[dict[str, Any]]:
+        """The models ranked by ``agent``'s (default: the primary agent's) fidelity score, best (lowest) first;
+        models with a refused score last, with the reason. Each row: model, score with its interval, AHED and
+        its instant counts (means over seeds), the score's parts (target mean, clutter, false tracks)."""
+        agent = agent or self.primary_agent
+        rows = []
+        for label, m in self.models.items():
+            d = m.agents[agent]
+            parts = d.score_parts
+            rows.append(
+                {
+                    "model": label,
+                    "score": d.score,
+                    "ci_low": d.score_ci[0] if d.score_ci else None,
+                    "ci_high": d.score_ci[1] if d.score_ci else None,
+                    "ahed": d.ahed,
+                    "n_common": d.n_common,
+                    "n_only_real": d.n_only_real,
+                    "n_only_synthetic": d.n_only_synthetic,
+                    "targets": parts.get("score", {}).get("counts", {}).get("targets_mean"),
+                    "clutter": parts.get("clutter", {}).get("value"),
+                    "false_tracks": parts.get("false_tracks", {}).get("value"),
+                    "reason": d.score_reason,
+                }
+            )
+        return sorted(rows, key=lambda r: (r["score"] is None, r["score"] if r["score"] is not None else 0.0))
+
     def to_json(self) -> dict[str, Any]:
         """The ``fidelity.json`` document (primary model and agent at top level; every model and agent below)."""
         prim = self.primary
@@ -182,6 +218,9 @@ class FidelityResult:
             "n_common": prim.n_common,
             "n_only_real": prim.n_only_real,
             "n_only_synthetic": prim.n_only_synthetic,
+            "score": prim.score,
+            "score_ci": prim.score_ci,
+            "score_reason": prim.score_reason,
             "fit_on": self.fit_on,
             "seeds": self.seeds,
             "model": self.primary_model,
@@ -192,6 +231,7 @@ class FidelityResult:
             "ahed_seed_std": prim.ahed_seed_std,
             "ahed_per_seed": prim.ahed_per_seed,
             "real_statistics": asdict(self.real_statistics),
+            "ranking": self.ranking(),
             "models": {label: m.to_json() for label, m in self.models.items()},
         }
         if self.radar_fit is not None:

@@ -8,10 +8,14 @@ radar parameters are known.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from seatwin.fidelity.joyride import JoyrideData, simulate_replica
+
+if TYPE_CHECKING:
+    from seatwin.sensors.radar import RadarConfig
 
 TOY_RADAR = {
     "noise": {"range_sigma_m": 5.0, "range_bias_m": 0.0, "bearing_sigma_deg": 0.5, "bearing_bias_deg": -0.5},
@@ -24,16 +28,32 @@ TOY_RADAR = {
 
 def toy_dataset(n: int = 120, seed: int = 11) -> JoyrideData:
     """Ownship on a straight line, target on a gentle curve; plots simulated with :data:`TOY_RADAR`."""
-    from seatwin.sensors.radar import RadarConfig, RadarModel
-
     t = 1.5e9 + 2.5 * np.arange(n)
     s = t - t[0]
     own = np.column_stack([2.0 * s, np.full(n, 2.0), 0.5 * s, np.full(n, 0.5)])
     ang = 0.004 * s
     tgt = np.column_stack([300 + 400 * np.sin(ang), 400 * 0.004 * np.cos(ang), 200 + 4.0 * s, np.full(n, 4.0)])
-    data = JoyrideData(t, [np.empty((0, 2))] * n, tgt, own, "<toy>")
-    scans = simulate_replica(data, RadarModel(RadarConfig(**TOY_RADAR), seed=seed))
-    data.plots = [sc.positions for sc in scans]
+    return simulated(JoyrideData(t, [np.empty((0, 2))] * n, tgt, own, "<toy>"), TOY_RADAR, seed)
+
+
+def orbit_dataset(radar: dict[str, Any] | RadarConfig, n: int = 200, seed: int = 11) -> JoyrideData:
+    """A "real" recording made by a known ``radar`` model: the ownship drifting north at 0.5 m/s, the target
+    circling at 5 m/s on a 300 m circle centred 150 m east of the ownship's start (ranges ~150–450 m, every
+    aspect), ``n`` scans 2.5 s apart."""
+    t = 1.5e9 + 2.5 * np.arange(n)
+    s = t - t[0]
+    own = np.column_stack([0.5 * s, np.full(n, 0.5), np.zeros(n), np.zeros(n)])
+    w = 5.0 / 300.0
+    tgt = np.column_stack([300 * np.sin(w * s), 300 * w * np.cos(w * s), 150 + 300 * np.cos(w * s), -300 * w * np.sin(w * s)])
+    return simulated(JoyrideData(t, [np.empty((0, 2))] * n, tgt, own, "<orbit>"), radar, seed)
+
+
+def simulated(data: JoyrideData, radar: dict[str, Any] | RadarConfig, seed: int) -> JoyrideData:
+    """``data`` with its plots replaced by the replica's scans under ``radar`` (:func:`simulate_replica`, ``seed``)."""
+    from seatwin.sensors.radar import RadarConfig, RadarModel
+
+    config = radar if isinstance(radar, RadarConfig) else RadarConfig(**radar)
+    data.plots = [sc.positions for sc in simulate_replica(data, RadarModel(config, seed=seed))]
     return data
 
 

@@ -6,9 +6,24 @@ those imports the other for it.
 
 * :mod:`.model` — :class:`HarbourLayout` and :data:`DEFAULT_LAYOUT`, the built-in harbour.
 * :mod:`.raster` — :class:`LandRaster`, a land/water grid read by :func:`read_land_raster`.
+* :mod:`.harbours` — harbours by name (``default``, ``ravnkloa``, ``none``) or raster file → :func:`harbour_map`;
+  the real Ravnkloa raster is found with :func:`find_data_file` (``$SEATWIN_DATA``, ``shared/data``).
 """
 
+from seatwin.layout.harbours import HARBOUR_NAMES, find_data_file, harbour_file, harbour_map, harbour_name
 from seatwin.layout.model import DEFAULT_LAYOUT, Box, HarbourLayout, MooredBoat
 from seatwin.layout.raster import LandRaster, read_land_raster
 
-__all__ = ["DEFAULT_LAYOUT", "Box", "HarbourLayout", "LandRaster", "MooredBoat", "read_land_raster"]
+__all__ = [
+    "DEFAULT_LAYOUT",
+    "HARBOUR_NAMES",
+    "Box",
+    "HarbourLayout",
+    "LandRaster",
+    "MooredBoat",
+    "find_data_file",
+    "harbour_file",
+    "harbour_map",
+    "harbour_name",
+    "read_land_raster",
+]

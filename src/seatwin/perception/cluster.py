@@ -33,11 +33,34 @@ def cluster_centroids(
     points: NDArray[np.float64], eps: float, min_points: int = 1
 ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
     """Centroids (K, dim) of the clusters and their point counts (K,)."""
+    centroids, counts, _ = cluster_moments(points, eps, min_points)
+    return centroids, counts
+
+
+def cluster_moments(
+    points: NDArray[np.float64], eps: float, min_points: int = 1
+) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.float64]]:
+    """Centroids (K, dim), point counts (K,) and covariance matrices (K, dim, dim) of the clusters."""
     labels = cluster_labels(points, eps, min_points)
     ok = labels >= 0
+    dim = points.shape[1] if points.ndim == 2 else 0
     if not ok.any():
-        return np.zeros((0, points.shape[1])), np.zeros(0, dtype=np.int64)
+        return np.zeros((0, dim)), np.zeros(0, dtype=np.int64), np.zeros((0, dim, dim))
     k = int(labels.max()) + 1
-    counts = np.bincount(labels[ok], minlength=k)
-    sums = np.stack([np.bincount(labels[ok], weights=points[ok, d], minlength=k) for d in range(points.shape[1])], axis=1)
-    return sums / counts[:, None], counts
+    lab, pts = labels[ok], points[ok]
+    counts = np.bincount(lab, minlength=k)
+    centroids = np.stack([np.bincount(lab, weights=pts[:, d], minlength=k) for d in range(dim)], axis=1) / counts[:, None]
+    dev = pts - centroids[lab]
+    cov = np.empty((k, dim, dim))
+    for i in range(dim):
+        for j in range(i, dim):
+            cov[:, i, j] = cov[:, j, i] = np.bincount(lab, weights=dev[:, i] * dev[:, j], minlength=k) / counts
+    return centroids, counts, cov
+
+
+def minor_spread(cov: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The smallest principal standard deviation [m] of each (K, 2, 2) cluster covariance: a cluster's
+    thickness across the surface it lies on (range noise thickens it, drop and distance thin it)."""
+    if not len(cov):
+        return np.zeros(0)
+    return np.sqrt(np.maximum(np.linalg.eigvalsh(cov)[:, 0], 0.0))

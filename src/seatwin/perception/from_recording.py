@@ -3,10 +3,10 @@
 The sensor pose of every sweep is the ownship's ground-truth pose at the sweep's stamp
 (interpolated linearly, heading unwrapped) composed with the sensor's mount from /tf_static.
 Radar plots recorded in the world NED frame (imported datasets) are used as they are, seen
-from the ownship position (the radar platform). Camera bearings come from the ``label`` detector
-run on the recorded ground-truth labels (:mod:`seatwin.sensors.camera.detector`): the detections
-of all cameras at one instant form one bearing scan (a vessel seen by two neighbouring cameras
-counts once).
+from the ownship position (the radar platform). Camera bearings come from a camera detector
+(:mod:`seatwin.perception.camera_frames`: ``label`` on the recorded labels, ``onnx`` on the
+images): the detections of all cameras at one instant form one bearing scan (a vessel seen by
+two neighbouring cameras counts once).
 """
 
 from __future__ import annotations
@@ -19,6 +19,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seatwin.errors import InputError, ParameterError
+from seatwin.perception.camera_frames import CameraDetector, default_detector, detected_frames, missing_camera
+from seatwin.perception.camera_frames import camera_topics as cam_topics
 from seatwin.perception.frames import Mount, SensorPose, sensor_pose
 from seatwin.perception.lidar import LidarClustering, lidar_scan
 from seatwin.perception.map_mask import NoMask, WaterMask
@@ -97,8 +99,9 @@ def scans_from_recording(
 
     ``truth`` (vessel name → truth with ``ownship``, ``time``, ``north``…; e.g.
     :func:`seatwin.evaluation.truth.recording_truth`) poses the sensors; default: the bag's own topics.
-    ``camera``: the :class:`~seatwin.sensors.camera.detector.LabelDetectorConfig` (default: its
-    defaults, seeded with the recording's seed).
+    ``camera``: the camera detector, a :class:`~seatwin.sensors.camera.detector.LabelDetectorConfig`
+    (default: its defaults, seeded with the recording's seed) or an
+    :class:`~seatwin.sensors.camera.onnx_detector.OnnxDetectorConfig`.
     """
     for s in sensors:
         if s not in SENSORS:
@@ -109,16 +112,15 @@ def scans_from_recording(
     if "lidar" in sensors:
         all_radar = set(rec.radar_topics())
         lidar_topics = [t for t in rec.topics_of_type("sensor_msgs/msg/PointCloud2") if t not in all_radar]
-    camera_topics = rec.topics_of_type("vision_msgs/msg/Detection2DArray") if "camera" in sensors else []
+    detector = camera or default_detector(rec)
+    camera_topics = cam_topics(rec, detector) if "camera" in sensors else []
     if "camera" in sensors and not camera_topics:
-        raise InputError(
-            rec.path, "no camera labels (vision_msgs/Detection2DArray) in this recording; simulate with --sensors ...,camera"
-        )
+        raise missing_camera(rec, detector)
     found = {"radar": radar_topics, "lidar": lidar_topics, "camera": camera_topics}
     wanted = radar_topics + lidar_topics
     if not wanted and not camera_topics:
         raise InputError(rec.path, f"no {' or '.join(sensors)} topics in this recording; it has {sorted(rec.topics)}")
-    n_camera = len({m_ns for m_ns in _label_stamps(rec, camera_topics)}) if camera_topics else 0
+    n_camera = len(set(_stamps(rec, camera_topics))) if camera_topics else 0
     total = sum(rec.topics[t].count for t in wanted) + n_camera
     mounts = {st.child: Mount.from_quaternion(st.translation, st.rotation) for st in rec.static_transforms()}
     own = _ownship(rec, truth)
@@ -143,10 +145,7 @@ def scans_from_recording(
         if wanted:
             streams.append(cloud_scans())
         if camera_topics:
-            from seatwin.sensors.camera.detector import LabelDetectorConfig
-
-            det = camera or LabelDetectorConfig(seed=int((rec.manifest or {}).get("seed") or 0))
-            streams.append(camera_scans(rec, camera_topics, det, pose_for))
+            streams.append(camera_scans(rec, camera_topics, detector, pose_for))
         yield from heapq.merge(*streams, key=lambda s: s.time)
 
     def cloud_scans() -> Iterator[Scan]:
@@ -179,29 +178,16 @@ def scans_from_recording(
     return RecordingScans(generate(), total, found, None if own is None else own.name)
 
 
-def _label_stamps(rec: Any, topics: list[str]) -> list[int]:
-    """Log times of the labels messages (one camera instant may hold several cameras)."""
+def _stamps(rec: Any, topics: list[str]) -> list[int]:
+    """Log times of the messages on ``topics`` (one camera instant may hold several cameras)."""
     return [ts for _, _, ts, _ in rec.raw_messages(set(topics))]
 
 
-def _camera_info(rec: Any, labels_topic: str) -> tuple[np.ndarray, tuple[float, ...] | None]:
-    """(K, D) of the camera whose labels are on ``labels_topic`` (its ``camera_info`` beside it)."""
-    info_topic = labels_topic.rsplit("/", 1)[0] + "/camera_info"
-    if info_topic not in rec.topics:
-        raise InputError(rec.path, f"no {info_topic} for the labels on {labels_topic}: the camera model is unknown")
-    msg = next(rec.messages(info_topic)).msg
-    k = np.asarray(msg.k if hasattr(msg, "k") else msg.K, float).reshape(3, 3)
-    d = tuple(float(x) for x in (msg.d if hasattr(msg, "d") else msg.D))
-    return k, (d if any(d) else None)
-
-
-def camera_scans(rec: Any, topics: list[str], det: Any, pose_for: Any) -> Iterator[Scan]:
-    """Bearing scans of the ``label`` detector over the labels ``topics``: one scan per instant, all cameras."""
+def camera_scans(rec: Any, topics: list[str], detector: CameraDetector, pose_for: Any) -> Iterator[Scan]:
+    """Bearing scans of ``detector`` over ``topics``: one scan per instant, all cameras."""
     from seatwin.perception.measurements import MeasurementKind
-    from seatwin.recording.reader import stamp_s
-    from seatwin.sensors.camera.detector import detect, detection_bearings
+    from seatwin.sensors.camera.detector import detection_bearings
 
-    models = {t: _camera_info(rec, t) for t in topics}
     pending: list[tuple[float, float]] = []  # (bearing, confidence) at the current instant
     current: tuple[float, float, float] | None = None  # (time, north, east)
 
@@ -215,35 +201,19 @@ def camera_scans(rec: Any, topics: list[str], det: Any, pose_for: Any) -> Iterat
         z = np.array([b for b, _ in kept], float).reshape(-1, 1)
         yield Scan(current[0], "camera", MeasurementKind.BEARING, z, current[1], current[2], {"confidence": [c for _, c in kept]})
 
-    for m in rec.messages(topics):
-        arr = m.msg
-        t = stamp_s(arr.header.stamp)
+    for frame in detected_frames(rec, topics, detector):
+        t = frame.time
         if current is not None and abs(t - current[0]) > 1e-6:
             yield from flush()
             pending = []
             current = None
-        pose = pose_for(arr.header.frame_id, t)
+        pose = pose_for(frame.frame_id, t)
         if current is None:
             current = (t, pose.north, pose.east)
-        boxes = []
-        for d in arr.detections:
-            scores = {r.hypothesis.class_id: float(r.hypothesis.score) for r in d.results}
-            boxes.append(
-                (
-                    d.id,
-                    d.bbox.center.position.x,
-                    d.bbox.center.position.y,
-                    d.bbox.size_x,
-                    d.bbox.size_y,
-                    scores.get("vessel", 1.0),
-                )
-            )
-        k, dist = models[m.topic]
-        w, h = int(round(2 * (k[0, 2] + 0.5))), int(round(2 * (k[1, 2] + 0.5)))
-        dets = detect(boxes, det, m.topic, m.log_time_ns, w, h)
+        dets = frame.detections
         if dets:
             u = np.array([x.center_x for x in dets])
             v = np.array([x.center_y for x in dets])
-            bearings = detection_bearings(u, v, k, dist, pose.rotation)
+            bearings = detection_bearings(u, v, frame.k, frame.d, pose.rotation)
             pending += [(float(b), x.confidence) for b, x in zip(bearings, dets, strict=True)]
     yield from flush()

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from seatwin.perception.cluster import cluster_centroids
+from seatwin.perception.cluster import cluster_moments, minor_spread
 from seatwin.perception.frames import SensorPose
 from seatwin.perception.map_mask import NoMask, WaterMask
 from seatwin.perception.measurements import MeasurementKind, Scan, cartesian_to_polar
@@ -65,7 +65,7 @@ def lidar_scan(
     rng = np.hypot(world[:, 0] - pose.north, world[:, 1] - pose.east)
     keep &= rng <= p.max_range
     keep[keep] = mask.is_water(world[keep, 0], world[keep, 1])
-    centroids, counts = cluster_centroids(world[keep, :2], p.eps, p.min_points)
+    centroids, counts, cov = cluster_moments(world[keep, :2], p.eps, p.min_points)
     z = cartesian_to_polar(centroids, (pose.north, pose.east))
     return Scan(
         time,
@@ -74,5 +74,23 @@ def lidar_scan(
         z,
         pose.north,
         pose.east,
-        extra={"cluster_sizes": counts, "n_points": int(pts.shape[0]), "n_kept": int(keep.sum())},
+        extra={
+            "cluster_sizes": counts,
+            "cluster_thickness": minor_spread(cov),
+            "n_points": int(pts.shape[0]),
+            "n_kept": int(keep.sum()),
+        },
     )
+
+
+SHAPE_FLOOR_M = 0.01
+"""Added to a cluster's thickness before its logarithm (a noiseless planar cluster has thickness ~0)."""
+
+
+def cluster_shape_features(scan: Scan) -> NDArray[np.float64]:
+    """(M, 2) shape features of a lidar scan's clusters: log point count, log(thickness + 1 cm) — what
+    range noise (thickness), ray drop and range dissipation (points) change; (0, 2) for other scans."""
+    sizes, thick = scan.extra.get("cluster_sizes"), scan.extra.get("cluster_thickness")
+    if sizes is None or thick is None:
+        return np.zeros((0, 2))
+    return np.column_stack([np.log(np.asarray(sizes, float)), np.log(np.asarray(thick, float) + SHAPE_FLOOR_M)])

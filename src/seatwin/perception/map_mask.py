@@ -4,7 +4,7 @@
   vectorised.
 * :class:`RasterMask` — a land/water raster in the Ravnkloa base-map format, read by
   :func:`seatwin.layout.read_land_raster`. Points outside the raster count as land.
-* :func:`load_mask` — ``harbour``, ``none`` or a raster's ``.yaml``/``.bin`` path.
+* :func:`load_mask` — ``harbour``, ``none``, ``ravnkloa`` or a raster's ``.yaml``/``.bin`` path.
 """
 
 from __future__ import annotations
@@ -60,9 +60,12 @@ WaterMask = NoMask | LayoutMask | RasterMask
 
 
 def load_mask(spec: str | Path | None) -> WaterMask:
-    """``harbour`` (built-in layout), ``none``, or a raster path (``.yaml`` or ``.bin``)."""
-    if spec is None or str(spec) == "none":
+    """``harbour``/``default`` (built-in layout), ``none``, ``ravnkloa`` (the real raster, found by
+    :func:`seatwin.layout.harbours.harbour_file`), or a raster path (``.yaml`` or ``.bin``)."""
+    from seatwin.layout.harbours import harbour_file, harbour_name
+
+    if spec is None or harbour_name(str(spec)) == "none":
         return NoMask()
-    if str(spec) == "harbour":
+    if harbour_name(str(spec)) == "default":
         return LayoutMask()
-    return RasterMask.load(spec)
+    return RasterMask.load(harbour_file(str(spec)) or spec)

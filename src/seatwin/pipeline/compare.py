@@ -2,6 +2,8 @@
 
 Each side is a track file or a recording (tracked with each tuning by :func:`track_recording`);
 both are associated with the same ground truth and compared per target (HED, COVDIFF, AHED).
+Recordings with lidar and cameras on both sides are also compared with lidar alone and with
+lidar + camera, and box by box (:mod:`seatwin.pipeline.camera_compare`).
 """
 
 from __future__ import annotations
@@ -25,10 +27,11 @@ def is_track_file(spec: str | Path) -> bool:
     return Path(spec).suffix.lower() in TRACK_FILE_SUFFIXES
 
 
-def load_run(spec: str | Path, tuning: str | None = None, keep_as: Path | None = None) -> Tracks:
+def load_run(spec: str | Path, tuning: str | None = None, keep_as: Path | None = None, **track: Any) -> Tracks:
     """A track file as it is, or a recording tracked with ``tuning`` (its own default when None).
 
-    ``keep_as``: also write the tracks of a recording to this track file.
+    ``keep_as``: also write the tracks of a recording to this track file; ``track``: further
+    :class:`~seatwin.pipeline.track.TrackOptions` fields (``sensors``, ``detector``…).
     """
     from seatwin.evaluation import read_tracks, write_tracks
 
@@ -37,7 +40,7 @@ def load_run(spec: str | Path, tuning: str | None = None, keep_as: Path | None =
         return read_tracks(path)
     if not path.exists():
         raise InputError(path, "no such track file (.csv) or recording")
-    tracks = track_recording(path, tuning=tuning).tracks
+    tracks = track_recording(path, tuning=tuning, **track).tracks
     tracks.source = f"{path} (tracked, tuning {tuning or 'the recording default'})"
     if keep_as is not None:
         keep_as.parent.mkdir(parents=True, exist_ok=True)
@@ -113,10 +116,13 @@ class CompareResult:
     table: dict[str, Any]
     report: Path | None = None
     track_files: list[Path] = field(default_factory=list)
+    camera: dict[str, Any] | None = None
+    """Lidar against lidar + camera AHED and the box comparison (:func:`camera_comparison`); None without cameras."""
 
     def to_json(self) -> dict[str, Any]:
         """The JSON of ``seatwin compare --json``."""
-        return {"real": self.real, "synthetic": self.synthetic, "truth": self.truth, **self.table}
+        extra = {} if self.camera is None else {"camera": self.camera}
+        return {"real": self.real, "synthetic": self.synthetic, "truth": self.truth, **self.table, **extra}
 
 
 def _clouds(real: str, synthetic: str, when: float, sensor: str, truth: TruthSet, relative: bool):  # noqa: ANN202
@@ -145,17 +151,30 @@ def compare_runs(
     clouds_relative: bool = False,
     clouds_sensor: str = "lidar",
     keep_tracks: Path | None = None,
+    camera_fusion: bool = True,
+    detector: str = "label",
+    model: str | None = None,
+    box_min_iou: float | None = None,
 ) -> CompareResult:
     """Compare each real/synthetic pair against ``truth`` (scenario or recording), per tuning.
 
     ``report_dir``: also write the HTML report there (land of ``report_map`` under the plots;
     both datasets' clouds at ``clouds_at`` when given). ``keep_tracks``: write the track files
-    of tracked recordings into this folder.
+    of tracked recordings into this folder. ``camera_fusion``: where both recordings of a pair
+    have lidar and cameras, also compare lidar alone against lidar + camera with the camera
+    ``detector`` (``label``, or ``onnx`` with ``model``) and their boxes (matched at IoU ≥ ``box_min_iou``, default
+    :data:`~seatwin.evaluation.boxes.DEFAULT_MIN_IOU`).
     """
     from seatwin.evaluation import CompareOptions, compare, comparison_table, load_truth
+    from seatwin.evaluation.boxes import DEFAULT_MIN_IOU
+    from seatwin.perception.camera_frames import camera_detector
 
     options = options or CompareOptions()
     real, synthetic = [str(p) for p in real], [str(p) for p in synthetic]
+    camera_cfg = camera_detector(detector, model)
+    min_iou = DEFAULT_MIN_IOU if box_min_iou is None else box_min_iou
+    if not 0.0 < min_iou <= 1.0:
+        raise ParameterError("box_min_iou", f"expected 0 < IoU <= 1, got {min_iou}")
     if clouds_at is not None and report_dir is None:
         raise ParameterError("clouds_at", "the point clouds go into the report: give a report folder as well")
     if clouds_sensor not in ("lidar", "radar"):
@@ -163,17 +182,22 @@ def compare_runs(
     pairs = comparison_pairs(real, synthetic, list(tunings))
     truth_set = load_truth(truth)
     mask = recording_mask(truth)
-    cache: dict[tuple[str, str | None], Tracks] = {}
+    cache: dict[tuple[str, str | None, tuple[str, ...]], Tracks] = {}
     kept: list[Path] = []
 
-    def run_of(spec: str, tuning: str | None, side: str) -> Tracks:  # a recording used twice is tracked once per tuning
-        if (spec, tuning) not in cache:
+    def run_of(spec: str, tuning: str | None, side: str, sensors: tuple[str, ...] = ()) -> Tracks:
+        """Tracks of ``spec`` (a recording used twice is tracked once per tuning and sensors; () its default sensors)."""
+        if (spec, tuning, sensors) not in cache:
             keep = None
             if keep_tracks is not None and not is_track_file(spec):
-                keep = Path(keep_tracks) / f"{side}_{Path(spec).stem}_{tuning or 'default'}.csv"
+                suffix = "".join(f"_{s}" for s in sensors)
+                keep = Path(keep_tracks) / f"{side}_{Path(spec).stem}_{tuning or 'default'}{suffix}.csv"
                 kept.append(keep)
-            cache[(spec, tuning)] = load_run(spec, tuning, keep)
-        return cache[(spec, tuning)]
+            track: dict[str, Any] = {"sensors": sensors} if sensors else {}
+            if "camera" in sensors and camera_cfg is not None:
+                track.update(detector=detector, model=model)
+            cache[(spec, tuning, sensors)] = load_run(spec, tuning, keep, **track)
+        return cache[(spec, tuning, sensors)]
 
     comparisons = []
     for r, s, t, label in pairs:
@@ -181,7 +205,15 @@ def compare_runs(
         check_overlap(run_r, truth_set, r)
         check_overlap(run_s, truth_set, s)
         comparisons.append(compare(run_r, run_s, truth_set, tuning=label, options=options, mask=mask))
-    result = CompareResult(real, synthetic, str(truth), comparisons, comparison_table(comparisons), track_files=kept)
+    camera = None
+    recordings = [p for p in pairs if not is_track_file(p[0]) and not is_track_file(p[1])]
+    if camera_fusion and recordings:
+        from seatwin.pipeline.camera_compare import camera_comparison
+
+        camera = camera_comparison(recordings, truth_set, options, mask, camera_cfg, run_of, min_iou)
+    result = CompareResult(
+        real, synthetic, str(truth), comparisons, comparison_table(comparisons), track_files=kept, camera=camera
+    )
     if report_dir is not None:
         from seatwin.perception.map_mask import load_mask
         from seatwin.report import write_comparison_report
@@ -203,5 +235,6 @@ def compare_runs(
             mask=load_mask(report_map),
             clouds=clouds,
             notes=notes,
+            camera=camera,
         )
     return result

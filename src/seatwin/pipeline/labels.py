@@ -140,9 +140,12 @@ class Snapshot:
     labels: dict[str, list[Any]]
 
 
-def camera_snapshot(scenario: Any, time: float, out: str | Path, *, absolute: bool = False, boxes: bool = True) -> Snapshot:
+def camera_snapshot(
+    scenario: Any, time: float, out: str | Path, *, absolute: bool = False, boxes: bool = True, harbour: str | None = None
+) -> Snapshot:
     """Render the rig of ``scenario`` (a name, a file or a :class:`~seatwin.scenario.Scenario`) at ``time``
-    seconds after its start (POSIX with ``absolute``) into ``out/<camera>.png`` with the boxes drawn."""
+    seconds after its start (POSIX with ``absolute``) into ``out/<camera>.png`` with the boxes drawn, in
+    ``harbour`` ('default', 'ravnkloa', 'none', a raster; default: the scenario's own)."""
     from seatwin.scenario import Scenario
     from seatwin.scenario.load import load_scenario
     from seatwin.sensors.camera.config import CameraConfig
@@ -157,7 +160,7 @@ def camera_snapshot(scenario: Any, time: float, out: str | Path, *, absolute: bo
         from seatwin.errors import ParameterError
 
         raise ParameterError("time", f"{t - sc.start:.3f} s is outside the scenario (0 … {sc.end - sc.start:.3f} s)")
-    sensor = CameraSensor(CameraConfig(), Scene.from_scenario(sc), sc.ownship.name)
+    sensor = CameraSensor(CameraConfig(), Scene.from_scenario(sc, harbour=harbour), sc.ownship.name)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     files, labels = [], {}

@@ -52,6 +52,13 @@ class TrackOptions(Settings):
     eps: float = Field(1.5, gt=0, description="Lidar clustering distance [m].")
     min_points: int = Field(3, ge=1, description="Smallest lidar cluster [points].")
     agent: Literal["jipda", "gnn"] = Field("jipda", description="The tracker: JIPDA (thesis ch. 5.1) or GNN.")
+    detector: Literal["label", "onnx"] = Field(
+        "label", description="Camera detector: 'label' (from the recorded labels) or 'onnx' (a YOLO-style model on the images)."
+    )
+    model: str | None = Field(None, description="The onnx detector's ONNX model file (never downloaded).")
+    classes: tuple[int, ...] | None = Field(
+        None, description="Class ids the onnx detector keeps (default: COCO 8, boat; empty: every class)."
+    )
 
 
 @dataclass
@@ -76,7 +83,12 @@ def track_scans(
     on_scan: Callable[[Scan], None] | None = None,
 ) -> Tracks:
     """Run a fresh ``agent`` (``jipda`` or ``gnn``) with ``tuning`` (config, preset name or file) over ``scans``."""
+    import numpy as np
+
     from seatwin.evaluation import Tracks
+    from seatwin.evaluation.tracks_io import PlotLog
+    from seatwin.perception.lidar import cluster_shape_features
+    from seatwin.perception.measurements import MeasurementKind
     from seatwin.tracking import JIPDATracker, load_tuning, run_tracker
     from seatwin.tracking.gnn import GNNTracker
 
@@ -86,7 +98,19 @@ def track_scans(
         raise ParameterError("agent", f"expected one of {', '.join(AGENTS)}, got {agent!r}")
     cfg = load_tuning(tuning) if isinstance(tuning, str) else tuning
     tracker = JIPDATracker(cfg) if agent == "jipda" else GNNTracker(cfg)
-    run = run_tracker(tracker, scans, on_scan, source)
+    plot_times: list[float] = []
+    plot_positions: list[np.ndarray] = []
+    plot_shapes: list[np.ndarray] = []
+
+    def seen(scan: Scan) -> None:
+        if scan.kind is not MeasurementKind.BEARING:
+            plot_times.append(scan.time)
+            plot_positions.append(scan.positions())
+            plot_shapes.append(cluster_shape_features(scan))
+        if on_scan is not None:
+            on_scan(scan)
+
+    run = run_tracker(tracker, scans, seen, source)
     tab = run.table
     return Tracks(
         tab.time,
@@ -97,6 +121,7 @@ def track_scans(
         tab.confirmed,
         scan_times=run.scan_times,
         source=f"{source} (tuning {cfg.name}, {agent})",
+        plots=PlotLog(np.asarray(plot_times, dtype=float), tuple(plot_positions), tuple(plot_shapes)),
     )
 
 
@@ -142,6 +167,7 @@ def track_recording(
     path = Path(recording)
     if not path.exists():
         raise InputError(path, "no such recording (a run directory, rosbag2 directory, or .mcap/.db3/.bag file)")
+    from seatwin.perception.camera_frames import camera_detector
     from seatwin.perception.from_recording import scans_from_recording
     from seatwin.perception.lidar import LidarClustering
     from seatwin.perception.map_mask import load_mask
@@ -150,6 +176,11 @@ def track_recording(
     from seatwin.recording import open_bag
     from seatwin.tracking import load_tuning
 
+    camera = camera_detector(options.detector, options.model, options.classes)
+    if camera is not None and "camera" not in (options.sensors or ()):
+        from seatwin.errors import ParameterError
+
+        raise ParameterError("detector", "the onnx detector reads the camera images: track with camera among the sensors")
     t_start = _time.perf_counter()
     with open_bag(path) as rec:
         hints = tracking_hints(rec.manifest)
@@ -174,6 +205,7 @@ def track_recording(
             lidar=LidarClustering(eps=options.eps, min_points=options.min_points),
             radar=radar,
             truth=vessel_truth(rec),
+            camera=camera,
         )
         done = 0
 

@@ -7,6 +7,7 @@ A missing EGL or GL library is bad *environment* input: :func:`create_context` r
 
 from __future__ import annotations
 
+import threading
 from typing import Any
 
 from seatwin.errors import InputError
@@ -14,19 +15,20 @@ from seatwin.errors import InputError
 DEBIAN_PACKAGES = "libegl1 libgl1-mesa-dri libgl1"
 """What headless rendering needs on Debian/Ubuntu (``apt-get install`` them)."""
 
-_CONTEXT: Any = None
+_SHARED = threading.local()
+"""One context per thread: an EGL context is current on the thread that created it only."""
 
 
 def create_context(shared: bool = True) -> Any:
     """A standalone ``moderngl`` context on the EGL back end (OpenGL ≥ 3.3 core).
 
-    ``shared`` returns one process-wide context (creating an EGL display is slow); every
-    renderer owns its own buffers in it. Raises :class:`InputError` when moderngl, EGL or a
-    GL driver is missing.
+    ``shared`` returns the calling thread's one context (creating an EGL display is slow, and a
+    context works only on the thread that made it: a gRPC worker thread gets its own); every
+    renderer owns its own buffers in it. Raises :class:`InputError` when moderngl, EGL or a GL
+    driver is missing.
     """
-    global _CONTEXT
-    if shared and _CONTEXT is not None:
-        return _CONTEXT
+    if shared and getattr(_SHARED, "context", None) is not None:
+        return _SHARED.context
     try:
         import moderngl
     except ImportError:  # pragma: no cover - a dependency of the package
@@ -42,7 +44,7 @@ def create_context(shared: bool = True) -> Any:
         ) from None
     ctx.gc_mode = "auto"  # GL objects go with their Python objects (a renderer per run would leak ~6 MB otherwise)
     if shared:
-        _CONTEXT = ctx
+        _SHARED.context = ctx
     return ctx
 
 

@@ -61,6 +61,8 @@ class ScenarioResult:
     clouds: list[Clouds] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     """What the compared datasets are (e.g. that the "real" side is itself simulated)."""
+    camera: dict | None = None
+    """The ``camera`` block of ``seatwin compare`` (lidar vs lidar + camera, boxes); see :func:`camera_section`."""
 
 
 def _img(png: bytes, alt: str) -> str:
@@ -105,6 +107,7 @@ def _ahed_section(results: list[ScenarioResult]) -> str:
             _f(r["n_both_missing"]),
             _f(r["fraction_only_one"], ".1%"),
             _f(r["mean_covdiff"]),
+            _score_cell(r),
         ]
         for r in rows
     ]
@@ -114,7 +117,7 @@ def _ahed_section(results: list[ScenarioResult]) -> str:
         vals = [r["ahed"] for r in sel if r["ahed"] is not None]
         label = "Average, all tunings" if tun is None else f"Average, tuning {tun or '–'}"
         label += f" (n = {len(vals)} of {len(sel)} defined)"
-        table.append([label, "", "", "undefined" if not vals else _f(float(np.mean(vals)))] + [""] * 7)
+        table.append([label, "", "", "undefined" if not vals else _f(float(np.mean(vals)))] + [""] * 8)
     header = [
         "scenario",
         "target",
@@ -127,6 +130,7 @@ def _ahed_section(results: list[ScenarioResult]) -> str:
         "both missing",
         "only one",
         "mean COVDIFF",
+        "fidelity score [95 % CI]",
     ]
     fig = figures.ahed_figure(rows, "AHED per scenario and target (cf. thesis Fig. 5.3)")
     return (
@@ -135,8 +139,36 @@ def _ahed_section(results: list[ScenarioResult]) -> str:
         + '<p class="note">AHED averages HED over the instants where both datasets have the target; it cannot see '
         'track loss, so the instants where only one dataset has it are counted beside it ("only one": their '
         "share of the instants where either has it). AHED is undefined for a target without a common instant; "
-        "averages leave it out and state over how many targets they are taken.</p>"
+        "averages leave it out and state over how many targets they are taken. The fidelity score (0 = the same "
+        "error distribution and coverage; docs/fidelity-score.md) compares the two datasets' distributions of "
+        "tracker errors without pairing instants, so independent noise does not reward a too-clean model; "
+        "it is refused (with the reason) when too few instants support it.</p>" + _score_overall(results)
     )
+
+
+def _score_cell(row: dict) -> str:
+    if row.get("score") is None:
+        return f"undefined ({_f(row.get('score_reason') or 'not computed')})"
+    return f"{_f(row['score'])} [{_f(row['score_ci_low'])}, {_f(row['score_ci_high'])}]"
+
+
+def _score_overall(results: list[ScenarioResult]) -> str:
+    """One line per comparison: the overall score (S5) with its parts."""
+    items = []
+    for r in results:
+        for c in r.comparisons:
+            if c.score is None:
+                continue
+            o = c.score.overall
+            value = "undefined" if o.value is None else f"{_f(o.value)} [{_f(o.ci_low)}, {_f(o.ci_high)}]"
+            parts = [
+                f"{name} {'undefined (' + _f(v.reason) + ')' if v.value is None else _f(v.value)}"
+                for name, v in ((k.replace("_", " "), v) for k, v in c.score.plots.items())
+            ]
+            note = f" — {_f(o.reason)}" if o.reason and o.value is not None else ""
+            tuning = f", tuning {_f(c.tuning)}" if c.tuning else ""
+            items.append(f"<li>{_f(r.name)}{tuning}: overall fidelity score {value}; {', '.join(parts)}{note}</li>")
+    return f"<ul>{''.join(items)}</ul>" if items else ""
 
 
 def _anees_table(comp: Comparison, target: str) -> str:
@@ -180,6 +212,93 @@ def _target_section(result: ScenarioResult, comp: Comparison, target: str, mask)
     return "\n".join(parts)
 
 
+def _box_rows(boxes: dict) -> list[list[str]]:
+    rows = []
+    for b in [*boxes["cameras"], boxes["overall"]]:
+        rows.append(
+            [
+                _f(b["camera"]),
+                f"{b['n_images_real']} / {b['n_images_synthetic']}",
+                _f(b["n_paired_images"]),
+                f"{b['n_boxes_real']} / {b['n_boxes_synthetic']}",
+                _f(b["n_matched"]),
+                _f(b["iou_mean"], ".3f"),
+                _f(b["iou_median"], ".3f"),
+                _f(b["centre_offset_mean_px"], ".2f"),
+                _f(b["centre_offset_p95_px"], ".2f"),
+                _f(b["detection_rate_real"], ".1%"),
+                _f(b["detection_rate_synthetic"], ".1%"),
+                _f(b["detection_rate_difference"], "+.1%"),
+            ]
+        )
+    return rows
+
+
+def camera_section(result: ScenarioResult) -> str:
+    """Lidar alone against lidar + camera (thesis Fig. 5.3 against Fig. 5.16) and the bounding-box comparison."""
+    cam = result.camera or {}
+    fusion = cam.get("fusion") or {"targets": []}
+    detector = _f(cam.get("detector")) + (f" (<code>{_f(cam['model'])}</code>)" if cam.get("model") else "")
+    parts = [
+        f"<h2>Cameras — {html.escape(result.name)}: lidar alone and lidar + camera</h2>",
+        f'<p class="note">Camera detector: {detector}. Each recording is tracked twice, with the lidar alone and with '
+        "lidar clusters and camera bearings (thesis Table 5.2's R<sub>c</sub>), and each pair of runs is compared as "
+        "above (cf. thesis Fig. 5.3 against Fig. 5.16).</p>",
+    ]
+    rows = fusion["targets"]
+    if rows:
+        table = [
+            [
+                _f(r["target"]),
+                _f(r["tuning"] or "–"),
+                "undefined" if r["ahed_lidar"] is None else _f(r["ahed_lidar"]),
+                "undefined" if r["ahed_lidar_camera"] is None else _f(r["ahed_lidar_camera"]),
+                _f(r["n_common_lidar"]),
+                _f(r["n_common_lidar_camera"]),
+                _f(r["fraction_only_one_lidar"], ".1%"),
+                _f(r["fraction_only_one_lidar_camera"], ".1%"),
+            ]
+            for r in rows
+        ]
+        n = len(rows)
+        table.append(
+            [
+                f"Average (n = {fusion['ahed_n_lidar']} / {fusion['ahed_n_lidar_camera']} of {n} defined)",
+                "",
+                "undefined" if fusion["ahed_mean_lidar"] is None else _f(fusion["ahed_mean_lidar"]),
+                "undefined" if fusion["ahed_mean_lidar_camera"] is None else _f(fusion["ahed_mean_lidar_camera"]),
+            ]
+            + [""] * 4
+        )
+        header = ["target", "tracker tuning", "AHED lidar", "AHED lidar + camera", "common", "common (+ camera)"]
+        header += ["only one", "only one (+ camera)"]
+        bars = [
+            {
+                "scenario": f"tuning {r['tuning']}" if r["tuning"] else result.name,
+                "target": r["target"],
+                "tuning": name,
+                "ahed": r[key],
+            }
+            for r in rows
+            for name, key in (("lidar", "ahed_lidar"), ("lidar + camera", "ahed_lidar_camera"))
+        ]
+        fig = figures.ahed_figure(bars, "AHED with lidar alone and with lidar + camera (cf. thesis Fig. 5.3, 5.16)")
+        parts += [_table(header, table, left=2, avg_rows=1), _img(fig, "AHED lidar and lidar + camera")]
+    parts.extend(f'<p class="note">{_f(why)}</p>' for why in cam.get("skipped", []))
+    for boxes in cam.get("boxes", []):
+        parts.append(f"<h3>Bounding boxes: {_f(boxes['real'])} against {_f(boxes['synthetic'])}</h3>")
+        header = ["camera", "images r / s", "paired", "boxes r / s", "matched", "IoU mean", "IoU median"]
+        header += ["centre offset mean [px]", "centre offset p95 [px]", "detection rate r", "detection rate s", "s − r"]
+        parts.append(_table(header, _box_rows(boxes), avg_rows=1))
+        parts.append(
+            f'<p class="note">Images of a camera paired within {boxes["time_tolerance_s"]:g} s; boxes matched one to '
+            f"one by the Hungarian method on IoU, a pair counting at IoU ≥ {boxes['min_iou']:g}. Detection rate: the "
+            "share of the objects seen in either run (matched pairs plus each side's unmatched boxes) that this run "
+            "has.</p>"
+        )
+    return "\n".join(parts)
+
+
 def render_report(results: list[ScenarioResult], title: str = "seatwin comparison report", mask=None) -> str:  # noqa: ANN001
     """The report page as a string (see :func:`write_report`)."""
     opts = results[0].comparisons[0].options if results and results[0].comparisons else None
@@ -197,6 +316,7 @@ def render_report(results: list[ScenarioResult], title: str = "seatwin compariso
         conv,
         "<h2>Averaged Hellinger distances</h2>",
         _ahed_section(results),
+        *(camera_section(res) for res in results if res.camera),
     ]
     for res in results:
         body.append(f"<h2>Scenario {html.escape(res.name)}</h2>")
@@ -251,6 +371,9 @@ def write_comparison_report(
     mask: WaterMask | None = None,
     clouds: list[Clouds] | None = None,
     notes: list[str] | None = None,
+    camera: dict | None = None,
 ) -> Path:
-    """The report of one scenario compared under one or more tunings; ``notes`` say what the datasets are."""
-    return write_report(out_dir, [ScenarioResult(scenario, comparisons, truth, clouds or [], notes or [])], title, mask)
+    """The report of one scenario compared under one or more tunings; ``notes`` say what the datasets are;
+    ``camera``: the camera block of ``seatwin compare`` (its own section)."""
+    result = ScenarioResult(scenario, comparisons, truth, clouds or [], notes or [], camera)
+    return write_report(out_dir, [result], title, mask)

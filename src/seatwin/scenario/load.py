@@ -15,11 +15,15 @@ from seatwin.scenario.model import Role, Scenario, Vessel
 from seatwin.scenario.yaml_format import read_scenario_yaml, write_scenario_yaml
 
 YAML_SUFFIXES = (".yaml", ".yml")
+GEMINI_HARBOUR = "ravnkloa"
+"""The harbour of a Gemini CSV read on its own: the published scenarios are Ravnkloa trajectories in
+the frame of the Ravnkloa land raster (a scenario YAML names its own ``environment.harbour``)."""
 
 
 def scenario_from_gemini_csv(path: str | os.PathLike[str], date: dt.date | None = None, max_speed: float = MAX_SPEED) -> Scenario:
     """A Gemini CSV as a scenario: the highest-numbered vessel (V3) is the ownship milliAmpere,
     V1 and V2 the targets Havfruen and Finn; any other vessel n is a target ``V{n}`` (model generic).
+    Its harbour is :data:`GEMINI_HARBOUR` (the CSV's local NED frame is Ravnkloa's).
     """
     path = Path(path)
     trajectories = read_gemini_csv(path, date=date, max_speed=max_speed)
@@ -32,7 +36,13 @@ def scenario_from_gemini_csv(path: str | os.PathLike[str], date: dt.date | None 
             name, model = TARGETS_BY_COLUMN.get(n, (f"V{n}", "generic"))
             role = Role.TARGET
         vessels.append(Vessel(name, role, traj, model, NOMINAL_DIMENSIONS.get(model)))
-    return Scenario(name=path.stem, vessels=vessels, origin=RAVNKLOA, source=str(path))
+    return Scenario(
+        name=path.stem,
+        vessels=vessels,
+        origin=RAVNKLOA,
+        source=str(path),
+        environment={"harbour": GEMINI_HARBOUR, "water": "flat"},
+    )
 
 
 def load_scenario(spec: str | os.PathLike[str], date: dt.date | None = None, max_speed: float = MAX_SPEED) -> Scenario:

@@ -1,7 +1,7 @@
 """Plot a scenario's tracks like thesis Fig. 3.11: circles at the start, stars at the end.
 
 East is to the right and north up (a map). In the default harbour the water outline, the
-piers and the moored boats are drawn under the tracks.
+piers and the moored boats are drawn under the tracks; in a raster harbour (``ravnkloa``) its land.
 """
 
 from __future__ import annotations
@@ -14,9 +14,9 @@ import numpy as np
 
 from seatwin.errors import InputError
 from seatwin.geo.frames import yaw_matrix
-from seatwin.layout import DEFAULT_LAYOUT, HarbourLayout
+from seatwin.layout import DEFAULT_LAYOUT, HarbourLayout, LandRaster
 from seatwin.scenario.model import Role, Scenario
-from seatwin.scenario.summary import water_fraction
+from seatwin.scenario.summary import scenario_harbour_map, water_fraction
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -51,6 +51,19 @@ def _draw_harbour(ax: Axes, layout: HarbourLayout) -> None:
         ax.add_patch(Polygon(xy, closed=True, facecolor="#8c8c8c", edgecolor="none", zorder=1))
 
 
+def _draw_raster(ax: Axes, raster: LandRaster) -> None:
+    from matplotlib.colors import ListedColormap
+
+    h, w = raster.water.shape
+    extent = (
+        raster.origin_east,
+        raster.origin_east + w * raster.resolution,
+        raster.origin_north,
+        raster.origin_north + h * raster.resolution,
+    )
+    ax.imshow(raster.water, origin="lower", extent=extent, cmap=ListedColormap([LAND, WATER]), vmin=0, vmax=1, zorder=0)
+
+
 def plot_scenario(scenario: Scenario, out: str | os.PathLike[str], tick_s: float = 10.0) -> Path:
     """Draw ``scenario`` to a PNG at ``out``; dots mark every ``tick_s`` seconds. Returns the path."""
     import matplotlib
@@ -66,6 +79,7 @@ def plot_scenario(scenario: Scenario, out: str | os.PathLike[str], tick_s: float
     try:
         lo, hi = np.array([np.inf, np.inf]), np.array([-np.inf, -np.inf])
         on_water = []
+        harbour = scenario_harbour_map(scenario)
         colours = plt.get_cmap("tab10").colors
         for i, v in enumerate(scenario.vessels):
             tr = v.trajectory
@@ -78,15 +92,19 @@ def plot_scenario(scenario: Scenario, out: str | os.PathLike[str], tick_s: float
             ax.plot(ticks.east, ticks.north, ".", color=colour, ms=4, zorder=3)
             ax.plot(s.east[0], s.north[0], "o", color=colour, ms=9, mec="black", mew=0.8, zorder=4)
             ax.plot(s.east[-1], s.north[-1], "*", color=colour, ms=15, mec="black", mew=0.8, zorder=4)
-            on_water.append(water_fraction(s.north, s.east))
+            if harbour is not None:
+                on_water.append(water_fraction(s.north, s.east, harbour))
             lo = np.minimum(lo, [s.east.min(), s.north.min()])
             hi = np.maximum(hi, [s.east.max(), s.north.max()])
         margin = max(20.0, 0.08 * float(np.max(hi - lo)))
         lo, hi = lo - margin, hi + margin
         note = ""
-        if scenario.environment.get("harbour", "default") == "default" and min(on_water) < 0.95:
+        if isinstance(harbour, LandRaster):
+            _draw_raster(ax, harbour)
+            note = f"\n(land: {Path(harbour.source).stem}; {100 * min(on_water):.0f}–{100 * max(on_water):.0f} % on water)"
+        elif harbour is DEFAULT_LAYOUT and min(on_water) < 0.95:
             note = "\n(tracks leave the default harbour's water: its outline is not drawn)"
-        elif scenario.environment.get("harbour", "default") == "default":
+        elif harbour is DEFAULT_LAYOUT:
             _draw_harbour(ax, DEFAULT_LAYOUT)
             lo[0] = min(lo[0], -DEFAULT_LAYOUT.half_width - 15.0)
             hi[0] = max(hi[0], DEFAULT_LAYOUT.half_width + 15.0)

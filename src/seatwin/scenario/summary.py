@@ -8,14 +8,27 @@ from typing import Any
 
 import numpy as np
 
-from seatwin.layout import DEFAULT_LAYOUT
+from seatwin.errors import InputError
+from seatwin.layout import DEFAULT_LAYOUT, HarbourLayout, LandRaster, harbour_map
 from seatwin.scenario.model import Scenario, Trajectory
 
 
-def water_fraction(north: np.ndarray, east: np.ndarray) -> float:
-    """Fraction of the points on the default harbour's open water."""
-    on = np.asarray(DEFAULT_LAYOUT.is_water(north, east), dtype=bool)
+def water_fraction(north: np.ndarray, east: np.ndarray, harbour: HarbourLayout | LandRaster = DEFAULT_LAYOUT) -> float:
+    """Fraction of the points on ``harbour``'s open water (a layout, or a land raster: outside it counts as land)."""
+    if isinstance(harbour, LandRaster):
+        on = harbour.is_water(north, east, outside=False)
+    else:
+        on = np.asarray(harbour.is_water(north, east), dtype=bool)
     return float(on.mean()) if on.size else 0.0
+
+
+def scenario_harbour_map(scenario: Scenario) -> HarbourLayout | LandRaster | None:
+    """The 2-D map of the scenario's own harbour; None for ``none`` or when its raster cannot be found
+    (a summary or a plot still works; simulating it says what is missing)."""
+    try:
+        return harbour_map(scenario.environment.get("harbour", "default"))
+    except InputError:
+        return None
 
 
 def closest_approach(a: Trajectory, b: Trajectory, start: float | None = None, end: float | None = None) -> tuple[float, float]:
@@ -49,11 +62,11 @@ def _iso(t: float) -> str:
 
 def scenario_summary(scenario: Scenario) -> dict[str, Any]:
     """A JSON-ready summary: span, rate, per-vessel speeds (min/mean/max over the samples in the
-    common span), path lengths, and each pair's closest approach (distance, time). In the default
-    harbour, ``on_water`` is the fraction of each vessel's samples on its open water (a Gemini
-    CSV recorded elsewhere shows up here), else ``None``."""
+    common span), path lengths, and each pair's closest approach (distance, time). ``on_water`` is the
+    fraction of each vessel's samples on its harbour's open water (the default layout or a land raster:
+    a trajectory recorded elsewhere shows up here), ``None`` without a harbour map."""
     start, end = scenario.start, scenario.end
-    default_harbour = scenario.environment.get("harbour", "default") == "default"
+    harbour = scenario_harbour_map(scenario)
     vessels = []
     for v in scenario.vessels:
         tr = v.trajectory
@@ -73,7 +86,7 @@ def scenario_summary(scenario: Scenario) -> dict[str, Any]:
                 "distance_m": float(np.hypot(np.diff(s.north), np.diff(s.east)).sum()),
                 "start_ned": [float(s.north[0]), float(s.east[0])],
                 "end_ned": [float(s.north[-1]), float(s.east[-1])],
-                "on_water": water_fraction(s.north, s.east) if default_harbour else None,
+                "on_water": None if harbour is None else water_fraction(s.north, s.east, harbour),
             }
         )
     pairs = []

@@ -6,7 +6,7 @@ Example::
     description: the ferry crosses the channel    # optional
     origin: {lat: 63.4336, lon: 10.3926, height: 0.0}   # optional (default: Ravnkloa)
     seed: 0
-    environment: {harbour: default, water: flat}  # harbour: default | path to a land/water raster
+    environment: {harbour: default, water: flat}  # harbour: default | ravnkloa | none | a land/water raster path
     rig: milliampere
     trajectory: ferry_crossing.csv                # relative to this file
     date: 2020-09-15                              # only for a CSV with TimeOfDay (UTC date)
@@ -31,6 +31,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 
 from seatwin.errors import InputError, read_text
 from seatwin.geo import GeodeticOrigin
+from seatwin.layout import HARBOUR_NAMES, harbour_name
 from seatwin.scenario.defaults import RAVNKLOA
 from seatwin.scenario.gemini_csv import MAX_SPEED, check_max_speed, read_gemini_csv, write_gemini_csv
 from seatwin.scenario.model import Dimensions, Role, Scenario, Vessel
@@ -49,7 +50,9 @@ class OriginSpec(_Strict):
 
 
 class EnvironmentSpec(_Strict):
-    harbour: str = Field("default", min_length=1, description="'default' or a land/water raster path")
+    harbour: str = Field(
+        "default", min_length=1, description="'default', 'ravnkloa', 'none' or a land/water raster path (relative to the file)"
+    )
     water: Literal["flat"] = "flat"
 
 
@@ -130,12 +133,14 @@ def read_scenario_yaml(path: str | os.PathLike[str], date: dt.date | None = None
     csv_path = (path.parent / spec.trajectory).resolve()
     if not csv_path.is_file():
         raise InputError(path, f"trajectory file {str(csv_path)!r} does not exist", where="field trajectory")
-    harbour = spec.environment.harbour
-    if harbour != "default":
+    harbour = harbour_name(spec.environment.harbour) or spec.environment.harbour
+    if harbour not in HARBOUR_NAMES:
         raster = (path.parent / harbour).resolve()
         if not raster.exists():
             raise InputError(
-                path, f"harbour raster {str(raster)!r} does not exist (or use 'default')", where="field environment.harbour"
+                path,
+                f"harbour raster {str(raster)!r} does not exist (or use a name: {', '.join(HARBOUR_NAMES)})",
+                where="field environment.harbour",
             )
         harbour = str(raster)
     use_date = date or spec.date
@@ -205,7 +210,8 @@ def write_scenario_yaml(
         raise InputError(scenario.source, f"the vessels share less than two sample times ({scenario.start}…{scenario.end})")
     date = write_gemini_csv(csv_path, [v.trajectory for v in ordered], time=time, time_format=time_format)
     harbour = str(scenario.environment.get("harbour", "default"))
-    if harbour != "default":
+    harbour = harbour_name(harbour) or harbour
+    if harbour not in HARBOUR_NAMES:
         try:
             harbour = os.path.relpath(Path(harbour).resolve(), path.parent.resolve())
         except ValueError:  # another drive on Windows

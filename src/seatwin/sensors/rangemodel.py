@@ -8,7 +8,9 @@ Two models:
 * ``raycast`` (here): exact ray casting with :mod:`seatwin.engine`; vessels are hit in
   their body frames at each beam's own time (vessels move during a sweep).
 * ``depthbuffer``: the thesis's depth-buffer method (4.1), in
-  ``seatwin.sensors.depthbuffer``; it must expose ``range_model(scene, batch) -> BeamRanges``.
+  ``seatwin.sensors.depthbuffer``; it must expose ``range_model(scene, batch) -> BeamRanges``
+  (``depthbuffer-legacy``: without the filter; ``depthbuffer-plane``: rasterised by OpenGL, each
+  beam intersected with its pixel's surface plane).
 
 Register others with :func:`register_range_model`.
 """
@@ -90,6 +92,7 @@ _MODELS: dict[str, RangeModel] = {}
 _LAZY = {
     "depthbuffer": ("seatwin.sensors.depthbuffer", "range_model"),
     "depthbuffer-legacy": ("seatwin.sensors.depthbuffer", "legacy_range_model"),
+    "depthbuffer-plane": ("seatwin.sensors.depthbuffer", "plane_range_model"),
 }
 
 

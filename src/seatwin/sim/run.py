@@ -71,18 +71,31 @@ def scenario_sensors(scenario: Scenario, settings: SimulationSettings) -> list[S
     return sensors
 
 
-def water_mask_hint(scenario: Scenario, settings: SimulationSettings) -> str:
-    """The water mask ``seatwin track`` should use on this run: the harbour it was simulated in."""
+def run_harbour(scenario: Scenario, settings: SimulationSettings) -> str:
+    """The harbour a run simulates in: ``settings.harbour`` (a name, or a raster path relative to the
+    current directory) over the scenario's own (a raster named in a scenario file is relative to it);
+    a name as its canonical name, a raster as an absolute path."""
+    from seatwin.layout import harbour_name
+
     spec = settings.harbour if settings.harbour is not None else scenario.environment.get("harbour", "default")
-    text = str(spec)
-    if text in ("default", "harbour"):
-        return "harbour"
-    if text == "none":
-        return "none"
-    path = Path(text)
+    name = harbour_name(spec)
+    if name is not None:
+        return name
+    path = Path(str(spec))
     if not path.is_absolute() and settings.harbour is None:
         path = Path(scenario.source).parent / path  # a raster named in a scenario file is relative to it
     return str(path.resolve())
+
+
+def water_mask_hint(scenario: Scenario, settings: SimulationSettings) -> str:
+    """The water mask ``seatwin track`` should use on this run: the harbour it was simulated in
+    (``harbour``: the built-in layout, ``none``, or a raster's absolute path — ``ravnkloa`` resolved)."""
+    from seatwin.layout import harbour_file
+
+    harbour = run_harbour(scenario, settings)
+    if harbour in ("default", "none"):
+        return "harbour" if harbour == "default" else "none"
+    return str(harbour_file(harbour).resolve())  # type: ignore[union-attr]
 
 
 def simulate_scenario(
@@ -111,6 +124,9 @@ def simulate_scenario(
     t0, t1 = time_window(scenario.start, scenario.end, start, duration)
     scenario = seeded(scenario, settings)
     sensors = scenario_sensors(scenario, settings)
+    harbour = run_harbour(scenario, settings)
+    # The run's scenario.yaml names the harbour the run was simulated in.
+    scenario = dataclasses.replace(scenario, environment={**scenario.environment, "harbour": harbour})
     try:
         run_dir.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
@@ -133,6 +149,7 @@ def simulate_scenario(
                 "start": t0,
                 "end": t1,
                 "settings": settings.model_dump(mode="json"),
+                "harbour": harbour,
                 "tracking": {"map": water_mask_hint(scenario, settings)},
             },
         },

@@ -10,10 +10,11 @@ from typing import Literal
 
 from pydantic import Field, field_validator
 
+from seatwin.layout.harbours import check_harbour_spec
 from seatwin.settings import Settings
 
 SENSOR_NAMES = ("lidar", "radar", "camera")
-LIDAR_MODES = ("raycast", "depthbuffer", "depthbuffer-legacy")
+LIDAR_MODES = ("raycast", "depthbuffer", "depthbuffer-legacy", "depthbuffer-plane")
 BAG_FORMATS = ("mcap", "sqlite3", "ros1")
 
 
@@ -27,10 +28,11 @@ class SimulationSettings(Settings):
     lidar_preset: Literal["vlp16", "vlp16-thesis"] = Field(
         "vlp16", description="vlp16 (1800 columns, the real sensor at 10 Hz) or vlp16-thesis (1024 columns)."
     )
-    lidar_mode: Literal["raycast", "depthbuffer", "depthbuffer-legacy"] = Field(
+    lidar_mode: Literal["raycast", "depthbuffer", "depthbuffer-legacy", "depthbuffer-plane"] = Field(
         "raycast",
         description="Lidar range model: exact ray casting, or the thesis's depth-buffer model (with or "
-        "without the spherical projection filter).",
+        "without the spherical projection filter), or depthbuffer-plane (rasterised by OpenGL, each beam "
+        "intersected with its pixel's surface plane).",
     )
     ray_drop: float | None = Field(
         None, ge=0.0, lt=1.0, description="Ray-drop probability (default: the preset's 0.8, as the thesis)."
@@ -44,8 +46,9 @@ class SimulationSettings(Settings):
     )
     harbour: str | None = Field(
         None,
-        description="Harbour to simulate in instead of the scenario's own: 'default', 'none' or a land raster "
-        "(.bin/.yaml, Ravnkloa base-map format).",
+        description="Harbour to simulate in instead of the scenario's own (a Gemini CSV's is 'ravnkloa', a "
+        "built-in's 'default'): 'default' (the built-in layout), 'ravnkloa' (the real land raster, found in "
+        "$SEATWIN_DATA or shared/data), 'none', or a land raster (.bin/.yaml, Ravnkloa base-map format).",
     )
     radar_config: str | None = Field(None, description="Radar YAML (default: the built-in radar model).")
     radar_spokes: bool = Field(
@@ -67,6 +70,11 @@ class SimulationSettings(Settings):
         if not math.isfinite(v):
             raise ValueError("expected a finite angle in degrees")
         return v
+
+    @field_validator("harbour")
+    @classmethod
+    def _harbour(cls, v: str | None) -> str | None:
+        return None if v is None else check_harbour_spec(v)
 
     @field_validator("sensors")
     @classmethod

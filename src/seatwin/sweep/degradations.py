@@ -1,12 +1,15 @@
 """The degraded sensor models of the sweep: a kind, its strength's unit, and the simulator settings.
 
 Each kind's strength is in the unit of the parameter it changes; ``reference`` is the value
-of the reference model (the VLP-16 preset as is, nominal mount) and every swept strength must
-lie beyond it. Each kind maps a strength to fields of :class:`seatwin.sim.SimulationSettings`
+of the reference model (standing in for reality) and a swept strength lies on either side of it
+within ``[lo, hi]``: beyond it (a degraded model) or, where the kind allows, below it (a
+*cleaner* model than reality — less noise, no drop — which a fidelity score must also see as
+wrong). Each kind maps a strength to fields of :class:`seatwin.sim.SimulationSettings`
 (``simulate_scenario(..., **d.settings(strength))``):
 
-* ``noise`` — Gaussian range noise σ [m] (``range_noise``; the preset: 0.015 m).
-* ``drop`` — ray-drop probability (``ray_drop``; the preset: 0.8, thesis 4.2.2).
+* ``noise`` — Gaussian range noise σ [m] (``range_noise``; reference 0.05 m, three times the
+  VLP-16 preset's 0.015 m, so that a cleaner model has room below it).
+* ``drop`` — ray-drop probability (``ray_drop``; the preset: 0.8, thesis 4.2.2; 0 = no drop).
 * ``dissipation`` — range-dependent return probability off (0) or on (1) (``dissipation``).
 * ``mount`` — the lidar simulated turned by this many degrees of yaw more than the nominal
   mount recorded on ``/tf_static`` (``mount_yaw_bias_deg``; a miscalibrated extrinsic the
@@ -35,42 +38,61 @@ class Degradation:
     fields: Callable[[float], dict[str, Any]]
     """Strength → :class:`seatwin.sim.SimulationSettings` field values."""
     hi: float = float("inf")
+    lo: float | None = None
+    """Smallest strength (a cleaner model than the reference); None: only degradations beyond the reference."""
 
     def strength_problem(self, strength: float) -> str | None:
-        """Why ``strength`` is not a degradation of this kind (None when it is)."""
-        if self.reference < strength <= self.hi:
+        """Why ``strength`` is not a swept strength of this kind (None when it is)."""
+        lo = self.reference if self.lo is None else self.lo
+        inside = (lo <= strength <= self.hi) if self.lo is not None else (lo < strength <= self.hi)
+        if inside and strength != self.reference:
             return None
-        return f"{self.kind} strength must be in ({self.reference}, {self.hi}] {self.unit} (beyond the reference model)"
+        bounds = f"[{lo}, {self.hi}]" if self.lo is not None else f"({lo}, {self.hi}]"
+        return f"{self.kind} strength must be in {bounds} {self.unit} and differ from the reference {self.reference}"
+
+    def direction(self, strength: float) -> str:
+        """``degraded`` beyond the reference, ``cleaner`` below it."""
+        return "cleaner" if strength < self.reference else "degraded"
 
     def settings(self, strength: float) -> dict[str, Any]:
-        """:class:`seatwin.sim.SimulationSettings` field values for ``strength`` (a ``ParameterError`` outside the range)."""
+        """:class:`seatwin.sim.SimulationSettings` field values of the reference model with this kind at ``strength``
+        (a ``ParameterError`` outside the range)."""
         problem = self.strength_problem(strength)
         if problem is not None:
             raise ParameterError("strengths", f"{problem}, got {strength}")
-        return self.fields(float(strength))
+        return {**reference_model(), **self.fields(float(strength))}
 
 
 DEGRADATIONS: dict[str, Degradation] = {
     d.kind: d
     for d in (
-        Degradation(
-            "noise", "m", "range noise σ [m]", VLP16.range_noise_std, (0.05, 0.1, 0.2, 0.4), lambda s: {"range_noise": s}
-        ),
+        Degradation("noise", "m", "range noise σ [m]", 0.1, (0.0, 0.03, 0.2, 0.4, 0.8), lambda s: {"range_noise": s}, lo=0.0),
         Degradation(
             "drop",
             "",
             "ray-drop probability",
             VLP16.drop_probability,
-            (0.85, 0.9, 0.95, 0.98),
+            (0.0, 0.5, 0.9, 0.95, 0.98),
             lambda s: {"ray_drop": s},
             hi=0.999,
+            lo=0.0,
         ),
-        Degradation("dissipation", "", "range dissipation (0 off, 1 on)", 0.0, (1.0,), lambda s: {"dissipation": True}, hi=1.0),
+        Degradation(
+            "dissipation", "", "range dissipation (0 off, 1 on)", 0.0, (1.0,), lambda s: {"dissipation": bool(s)}, hi=1.0
+        ),
         Degradation(
             "mount", "deg", "mount yaw bias [deg]", 0.0, (0.5, 1.0, 2.0, 4.0), lambda s: {"mount_yaw_bias_deg": s}, hi=90.0
         ),
     )
 }
+
+
+def reference_model() -> dict[str, Any]:
+    """:class:`seatwin.sim.SimulationSettings` field values of the reference model: every kind at its reference."""
+    out: dict[str, Any] = {}
+    for d in DEGRADATIONS.values():
+        out.update(d.fields(d.reference))
+    return out
 
 
 def degradation(kind: str) -> Degradation:

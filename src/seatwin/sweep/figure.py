@@ -1,4 +1,4 @@
-"""The sweep figure: AHED against strength per kind, the per-seed spread, and the seed-to-seed floor."""
+"""The sweep figure: the fidelity score (and AHED) against strength per kind, the per-seed spread, the floor."""
 
 from __future__ import annotations
 
@@ -9,9 +9,18 @@ from seatwin.sweep.degradations import degradation
 from seatwin.sweep.results import SweepResult, spearman_by_kind, summarise
 
 
+def _rho_text(by_dir: dict) -> str:
+    parts = []
+    for direction, r in by_dir.items():
+        band = "" if r.seed_min is None else f" (seeds {r.seed_min:.2f}–{r.seed_max:.2f})"
+        parts.append(f"{direction} ρ={r.rho_points:.2f}{band}" if r.rho_points is not None else f"{direction} ρ –")
+    return "; ".join(parts)
+
+
 def plot_sweep(result: SweepResult, path: str | Path) -> Path:
-    """One panel per kind: mean AHED over seeds (line) with min–max bars, every seed's point, and the
-    band of AHED between reference runs of different seeds (differences below it are draw noise)."""
+    """One panel per kind: the mean fidelity score over seeds (line) with min–max bars, every seed's point,
+    the reference strength (dotted) and the floor band (the reference model against the reference run
+    of another seed); AHED's mean in grey for comparison."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -20,32 +29,37 @@ def plot_sweep(result: SweepResult, path: str | Path) -> Path:
     kinds = result.kinds
     ncols = min(len(kinds), 2)
     nrows = math.ceil(len(kinds) / ncols)
-    fig, axes = plt.subplots(nrows, ncols, figsize=(5.2 * ncols, 3.8 * nrows), squeeze=False)
-    rho = spearman_by_kind(result)
-    floor = result.floor
+    fig, axes = plt.subplots(nrows, ncols, figsize=(5.4 * ncols, 3.9 * nrows), squeeze=False)
+    rho = spearman_by_kind(result, "score")
+    floor = result.floor("score")
     for ax, kind in zip(axes.flat, kinds):
-        rows = [r for r in result.kind_rows(kind) if r.ahed is not None]
-        summary = [s for s in summarise(rows) if s.ahed_mean is not None]
+        rows = [r for r in result.kind_rows(kind) if r.score is not None]
+        summary = [s for s in summarise(rows, "score") if s.mean is not None]
         x = [s.strength for s in summary]
-        mean = [s.ahed_mean for s in summary]
-        lo = [m - s.ahed_min for m, s in zip(mean, summary)]
-        hi = [s.ahed_max - m for m, s in zip(mean, summary)]
+        mean = [s.mean for s in summary]
+        lo = [m - s.min for m, s in zip(mean, summary)]
+        hi = [s.max - m for m, s in zip(mean, summary)]
         if floor:
-            ax.axhspan(min(floor), max(floor), color="0.85", zorder=0, label=f"seed-to-seed ({len(floor)} pairs)")
-            ax.axhline(sum(floor) / len(floor), color="0.6", lw=0.8, zorder=0)
-        ax.errorbar(x, mean, yerr=[lo, hi], fmt="o-", capsize=4, color="C0", label="mean, min–max over seeds")
-        ax.scatter([r.strength for r in rows], [r.ahed for r in rows], s=10, color="C1", alpha=0.7, zorder=3, label="each seed")
-        r = rho[kind].rho_points
-        ax.set_title(f"{kind}: Spearman ρ = {r:.2f}" if r is not None else f"{kind}: ρ undefined")
-        ax.set_xlabel(degradation(kind).label + " (leftmost: reference)")
-        ax.set_ylabel("AHED vs seed-matched reference")
+            ax.axhspan(min(floor), max(floor), color="0.88", zorder=0, label="floor (reference model, other seed)")
+        ax.axvline(degradation(kind).reference, color="0.5", ls=":", lw=1, label="reference")
+        ax.errorbar(x, mean, yerr=[lo, hi], fmt="o-", capsize=4, color="C0", label="score: mean, min–max over seeds")
+        ax.scatter([r.strength for r in rows], [r.score for r in rows], s=10, color="C1", alpha=0.7, zorder=3, label="each seed")
+        ahed = [s for s in summarise(result.kind_rows(kind), "ahed") if s.mean is not None]
+        ax.plot([s.strength for s in ahed], [s.mean for s in ahed], "s--", color="0.55", ms=3, lw=1, label="AHED mean")
+        ax.set_title(f"{kind}: {_rho_text(rho[kind])}", fontsize=8)
+        ax.set_xlabel(degradation(kind).label)
+        ax.set_ylabel("fidelity score vs reference run")
         ax.set_ylim(bottom=0)
         ax.grid(alpha=0.3)
     for ax in list(axes.flat)[len(kinds) :]:
         ax.set_visible(False)
     axes.flat[0].legend(fontsize=7, loc="upper left")
     s = result.settings
-    fig.suptitle(f"Fidelity sweep: {s.scenario}, {s.duration:g} s, tuning {s.tuning}, seeds {list(s.seeds)}", fontsize=10)
+    fig.suptitle(
+        f"Fidelity sweep: {s.scenario}, {s.duration:g} s, tuning {s.tuning}, seeds {list(s.seeds)}, "
+        f"reference seed + {s.reference_seed_offset}",
+        fontsize=10,
+    )
     fig.tight_layout()
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)

@@ -15,56 +15,78 @@ from seatwin.sweep.degradations import degradation
 from seatwin.sweep.settings import SweepSettings
 
 REFERENCE_KIND = "reference"
-FLOOR_KIND = "seed-to-seed"
-CSV_FIELDS = ("kind", "strength", "seed", "reference_seed", "ahed", "n_common", "fraction_only_one", "targets_with_ahed")
+METRICS = ("score", "ahed")
+CSV_FIELDS = (
+    "kind",
+    "strength",
+    "seed",
+    "reference_seed",
+    "score",
+    "score_ci_low",
+    "score_ci_high",
+    "ahed",
+    "n_common",
+    "fraction_only_one",
+    "targets_with_ahed",
+)
 
 
 @dataclass(frozen=True)
 class SweepRow:
-    """AHED of one degraded copy against its reference (or of two references, for the seed-to-seed floor).
+    """One copy (or the reference model) compared with the reference run of another seed.
 
-    ``ahed`` is the mean over targets of the per-target AHED (5.34); ``None`` where no target had
-    common instants. ``fraction_only_one`` is the mean over targets of the share of instants only
-    one dataset tracked the target (what AHED cannot see).
+    ``score``: the overall fidelity score (S5) with its bootstrap interval; ``ahed`` the mean over
+    targets of AHED (5.34); ``None`` where undefined. ``fraction_only_one`` is the mean over
+    targets of the share of instants only one dataset tracked the target (what AHED cannot see).
     """
 
     kind: str
     strength: float
     seed: int
     reference_seed: int
+    score: float | None
+    score_ci_low: float | None
+    score_ci_high: float | None
     ahed: float | None
     n_common: int
     fraction_only_one: float | None
     targets_with_ahed: int
 
+    def value(self, metric: str) -> float | None:
+        return self.score if metric == "score" else self.ahed
+
 
 @dataclass(frozen=True)
 class StrengthSummary:
-    """AHED over the seeds at one strength: mean, min, max, standard deviation, and how many seeds had one."""
+    """A metric over the seeds at one strength: mean, min, max, standard deviation, and how many seeds had one."""
 
     strength: float
     n_seeds: int
-    n_ahed: int
-    ahed_mean: float | None
-    ahed_min: float | None
-    ahed_max: float | None
-    ahed_std: float | None
+    n_defined: int
+    mean: float | None
+    min: float | None
+    max: float | None
+    std: float | None
     fraction_only_one_mean: float | None
 
 
 @dataclass(frozen=True)
 class KindSpearman:
-    """Spearman ρ of strength against AHED for one kind, three ways (None where undefined).
+    """Spearman ρ of the distance from the reference, ``|strength − reference|``, against a metric, for one
+    kind in one direction (``degraded`` or ``cleaner``), the reference model's points included.
 
-    ``rho_points``: over every per-seed point, the seed-matched reference (AHED 0) included;
-    ``rho_means``: over the per-strength means (reference included);
-    ``rho_degraded``: over the per-seed points of the degraded copies only (None with < 2 strengths).
-    A seed without an AHED (no common instants) is left out of all three.
+    ``rho_points``: over every seed's points; ``rho_means``: over the per-strength means;
+    ``rho_per_seed``: each seed on its own (two points give ±1), with its band ``seed_min``–``seed_max``.
+    None where undefined; a point without a value is left out.
     """
 
+    metric: str
+    direction: str
     rho_points: float | None
     rho_means: float | None
-    rho_degraded: float | None
+    rho_per_seed: dict[int, float | None]
+    seed_min: float | None
+    seed_max: float | None
 
 
 @dataclass
@@ -75,7 +97,7 @@ class SweepResult:
     rows: list[SweepRow] = field(default_factory=list)
 
     def kind_rows(self, kind: str, with_reference: bool = True) -> list[SweepRow]:
-        """The rows of ``kind`` (and the seed-matched reference points placed at the kind's reference value)."""
+        """The rows of ``kind`` (and the reference model's points placed at the kind's reference value)."""
         out = [r for r in self.rows if r.kind == kind]
         if with_reference:
             ref = degradation(kind).reference
@@ -86,33 +108,33 @@ class SweepResult:
     def kinds(self) -> list[str]:
         return list(self.settings.kinds)
 
-    @property
-    def floor(self) -> list[float]:
-        """AHED between references of different seeds: the difference random draws alone make."""
-        return [r.ahed for r in self.rows if r.kind == FLOOR_KIND and r.ahed is not None]
-
-    def floor_mean_max(self) -> tuple[float | None, float | None]:
-        """Mean and maximum of :attr:`floor` (None without seed pairs)."""
-        floor = self.floor
-        return (float(np.mean(floor)), float(np.max(floor))) if floor else (None, None)
+    def floor(self, metric: str = "score") -> list[float]:
+        """The reference model against the reference run of another seed: what independent draws alone give."""
+        return [v for r in self.rows if r.kind == REFERENCE_KIND and (v := r.value(metric)) is not None]
 
     def to_json(self) -> dict[str, Any]:
-        """The ``sweep.json`` document: settings, rows, per-kind summaries and ρ, the seed-to-seed floor."""
-        mean, top = self.floor_mean_max()
+        """The ``sweep.json`` document: settings, rows, per-kind summaries and ρ per metric and direction, the floor."""
         return {
             "settings": self.settings.describe(),
             "rows": [asdict(r) for r in self.rows],
-            "summary": {k: [asdict(s) for s in summarise(self.kind_rows(k))] for k in self.kinds},
-            "spearman": {k: asdict(r) for k, r in spearman_by_kind(self).items()},
-            "seed_to_seed_floor": {"values": self.floor, "mean": mean, "max": top},
+            "summary": {m: {k: [asdict(s) for s in summarise(self.kind_rows(k), m)] for k in self.kinds} for m in METRICS},
+            "spearman": {
+                m: {k: {d: asdict(r) for d, r in by_dir.items()} for k, by_dir in spearman_by_kind(self, m).items()}
+                for m in METRICS
+            },
+            "floor": {m: {"values": self.floor(m), "mean": _mean(self.floor(m))} for m in METRICS},
         }
 
 
-def summarise(rows: list[SweepRow]) -> list[StrengthSummary]:
-    """Per strength (ascending): the spread of AHED over seeds."""
+def _mean(v: list[float]) -> float | None:
+    return float(np.mean(v)) if v else None
+
+
+def summarise(rows: list[SweepRow], metric: str = "score") -> list[StrengthSummary]:
+    """Per strength (ascending): the spread of ``metric`` over seeds."""
     out = []
     for s in sorted({r.strength for r in rows}):
-        v = np.array([r.ahed for r in rows if r.strength == s and r.ahed is not None], dtype=float)
+        v = np.array([x for r in rows if r.strength == s and (x := r.value(metric)) is not None], dtype=float)
         frac = [r.fraction_only_one for r in rows if r.strength == s and r.fraction_only_one is not None]
         out.append(
             StrengthSummary(
@@ -132,24 +154,42 @@ def summarise(rows: list[SweepRow]) -> list[StrengthSummary]:
 def _rho(x: list[float], y: list[float]) -> float | None:
     from scipy.stats import spearmanr
 
-    if len(x) < 3 or len(set(x)) < 2 or len(set(y)) < 2:
+    if len(x) < 2 or len(set(x)) < 2 or len(set(y)) < 2:
         return None
     value = float(spearmanr(x, y).statistic)
     return value if math.isfinite(value) else None
 
 
-def spearman_by_kind(result: SweepResult) -> dict[str, KindSpearman]:
-    """Spearman ρ of strength against AHED, per kind (:class:`KindSpearman`)."""
-    out: dict[str, KindSpearman] = {}
+def spearman_by_kind(result: SweepResult, metric: str = "score") -> dict[str, dict[str, KindSpearman]]:
+    """Per kind and direction (``degraded``, and ``cleaner`` where swept): ρ of distance from the reference
+    against ``metric`` (:class:`KindSpearman`)."""
+    out: dict[str, dict[str, KindSpearman]] = {}
     for kind in result.kinds:
-        rows = [r for r in result.kind_rows(kind) if r.ahed is not None]
-        deg = [r for r in rows if r.kind == kind]
-        summary = [s for s in summarise(rows) if s.ahed_mean is not None]
-        out[kind] = KindSpearman(
-            _rho([r.strength for r in rows], [r.ahed for r in rows]),
-            _rho([s.strength for s in summary], [s.ahed_mean for s in summary]),
-            _rho([r.strength for r in deg], [r.ahed for r in deg]),
-        )
+        d = degradation(kind)
+        rows = [r for r in result.kind_rows(kind) if r.value(metric) is not None]
+        out[kind] = {}
+        for direction in ("degraded", "cleaner"):
+            sel = [r for r in rows if r.kind == REFERENCE_KIND or d.direction(r.strength) == direction]
+            if not any(r.kind != REFERENCE_KIND for r in sel):
+                continue
+            per_seed = {
+                seed: _rho(
+                    [abs(r.strength - d.reference) for r in sel if r.seed == seed],
+                    [r.value(metric) for r in sel if r.seed == seed],
+                )
+                for seed in sorted({r.seed for r in sel})
+            }
+            summary = [s for s in summarise(sel, metric) if s.mean is not None]
+            defined = [v for v in per_seed.values() if v is not None]
+            out[kind][direction] = KindSpearman(
+                metric,
+                direction,
+                _rho([abs(r.strength - d.reference) for r in sel], [r.value(metric) for r in sel]),
+                _rho([abs(s.strength - d.reference) for s in summary], [s.mean for s in summary]),
+                per_seed,
+                min(defined) if defined else None,
+                max(defined) if defined else None,
+            )
     return out
 
 

@@ -8,8 +8,8 @@ from pydantic import Field, ValidationInfo, field_validator
 
 from seatwin.errors import ParameterError
 from seatwin.evaluation.compare import CompareOptions
-from seatwin.settings import Settings
-from seatwin.sweep.degradations import DEGRADATIONS, Degradation, degradation, degradations
+from seatwin.settings import Seeds, Settings
+from seatwin.sweep.degradations import DEGRADATIONS, Degradation, degradation, degradations, reference_model
 
 DEFAULT_TUNING = "synthetic"
 
@@ -24,10 +24,10 @@ class SweepSettings(Settings):
     )
     strengths: dict[str, tuple[float, ...]] = Field(
         default_factory=dict,
-        description="Strengths per kind, in the kind's unit, each beyond the reference model "
-        "(default: the kind's default strengths).",
+        description="Strengths per kind, in the kind's unit, each beyond the reference model or, where the kind "
+        "allows, cleaner than it (default: the kind's default strengths).",
     )
-    seeds: tuple[int, ...] = Field((1, 2, 3), min_length=1, description="Distinct seeds: every point is repeated with each.")
+    seeds: Seeds = Field((1, 2, 3), min_length=1, description="Distinct seeds: every point is repeated with each.")
     duration: float = Field(30.0, gt=0, description="Simulated seconds per run.")
     offset: float | None = Field(
         None,
@@ -35,11 +35,16 @@ class SweepSettings(Settings):
         description="Window start in seconds after the scenario's start (default: the window centred in the scenario).",
     )
     tuning: str = Field(DEFAULT_TUNING, description="Tracker tuning of every run (preset or tuning file).")
+    reference_seed_offset: int = Field(
+        1000,
+        ge=0,
+        description="The reference run of seed s uses seed s + this (0: seed-matched, sharing every draw — "
+        "which no real-versus-synthetic comparison can).",
+    )
     comparison: CompareOptions = Field(
         default_factory=lambda: CompareOptions(both_missing="skip"),
-        description="Conventions of each comparison with the seed-matched reference.",
+        description="Conventions of each comparison with the reference run.",
     )
-    keep_recordings: bool = Field(False, description="Keep every simulated recording (large).")
 
     @field_validator("kinds")
     @classmethod
@@ -65,13 +70,6 @@ class SweepSettings(Settings):
                     raise ValueError(problem)
         return v
 
-    @field_validator("seeds")
-    @classmethod
-    def _distinct_seeds(cls, v: tuple[int, ...]) -> tuple[int, ...]:
-        if len(set(v)) != len(v):
-            raise ValueError("expected distinct seeds")
-        return v
-
     @property
     def degradations(self) -> list[Degradation]:
         return degradations(self.kinds)
@@ -80,18 +78,15 @@ class SweepSettings(Settings):
         return tuple(self.strengths.get(d.kind, d.default_strengths))
 
     def n_steps(self) -> int:
-        """Simulate-and-track steps: one reference per seed and one copy per (kind, strength, seed)."""
-        return len(self.seeds) * (1 + sum(len(self.strengths_of(d)) for d in self.degradations))
+        """Simulate-and-track jobs: per seed a reference run, the reference model and one copy per (kind, strength)."""
+        return len(self.seeds) * (2 + sum(len(self.strengths_of(d)) for d in self.degradations))
 
     def window_offset(self, span: float) -> float:
-        """The window's start [s after the scenario's start] in a scenario of ``span`` seconds (checked)."""
-        offset = self.offset if self.offset is not None else max(0.0, (span - self.duration) / 2)
-        if offset + self.duration > span + 1e-9:
-            param = "duration" if self.offset is None else "offset"
-            raise ParameterError(
-                param, f"the window [{offset:g}, {offset + self.duration:g}] s is not inside the scenario's {span:g} s"
-            )
-        return float(offset)
+        """The window's start [s after the scenario's start] in a scenario of ``span`` seconds (checked; the
+        campaign's rule: :func:`seatwin.campaign.grid.window_offset`)."""
+        from seatwin.campaign.grid import window_offset
+
+        return window_offset(span, self.duration, self.offset, self.scenario)
 
     def describe(self) -> dict[str, Any]:
         """The settings as ``sweep.json`` records them."""
@@ -108,8 +103,13 @@ class SweepSettings(Settings):
             "offset_s": self.offset,
             "tuning": self.tuning,
             "lidar": "vlp16 preset, exact ray casting",
+            "reference_model": reference_model(),
+            "reference_seed_offset": self.reference_seed_offset,
             "comparison": {
-                "reference": "the seed-matched reference run",
+                "reference": "the seed-matched reference run"
+                if self.reference_seed_offset == 0
+                else f"the reference run of seed s + {self.reference_seed_offset}",
+                "score": "overall fidelity score (S5, docs/fidelity-score.md)",
                 "ahed": "mean over targets of AHED (5.34)",
                 "hellinger_form": c.form,
                 "both_missing": c.both_missing,

@@ -70,7 +70,33 @@ class TrackerConfig(BaseModel):
     terminate_threshold: float = Field(
         0.01, gt=0, lt=1, description="A track is deleted when its existence falls below this. Our choice."
     )
-    v_max: float = Field(10.0, gt=0, description="Maximum target speed [m/s] for initiation, d = v_max·ΔT (thesis 5.1.3).")
+    v_max: float = Field(
+        10.0,
+        gt=0,
+        description="Maximum target speed [m/s]: initiation within d = v_max·ΔT (thesis 5.1.3), and the speed gate "
+        "of confirmed tracks (speed_gate_*).",
+    )
+    speed_gate_sigma: float | None = Field(
+        3.0,
+        gt=0,
+        description="A confirmed track is deleted when its estimated speed exceeds v_max + speed_gate_margin + "
+        "this many standard deviations of its speed estimate, or speed_gate_limit × v_max (a track sliding "
+        "along a quay face, or following clutter, faster than any target); null: never. Our choice: 3σ "
+        "(one-sided 0.13 %) keeps a real target a little faster than v_max while its velocity is uncertain "
+        "(the joyride boat reaches 11.3 m/s against v_max 10) and removes tracks surely too fast.",
+    )
+    speed_gate_margin: float = Field(
+        1.0,
+        ge=0,
+        description="Absolute tolerance [m/s] of the speed gate on top of v_max (a converged track of a target "
+        "at about v_max is kept). Our choice: 1 m/s.",
+    )
+    speed_gate_limit: float = Field(
+        2.0,
+        gt=1,
+        description="Whatever its uncertainty, a confirmed track faster than this × v_max is deleted (a track "
+        "with a velocity too uncertain for the σ test can still not sail at 75 m/s). Our choice: 2.",
+    )
     init_margin: float = Field(
         0.0,
         ge=0,

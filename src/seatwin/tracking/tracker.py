@@ -4,8 +4,9 @@ Per scan: predict every track (constant velocity, existence × P_S), gate (eq. 5
 the joint association per cluster (:mod:`.association`: exact where cheap, belief propagation
 beyond), update each track with
 the probability-weighted mixture of its EKF corrections (moment-matched to one Gaussian),
-update existence, confirm/terminate by thresholds, then start tracks from pairs of
-unassociated measurements of the same sensor within ``d = v_max·ΔT`` (thesis 5.1.3).
+update existence, confirm/terminate by thresholds (and delete a confirmed track whose speed is
+inconsistent with ``v_max``: :func:`too_fast`), then start tracks from pairs of unassociated
+measurements of the same sensor within ``d = v_max·ΔT`` (thesis 5.1.3).
 
 All tracks live in stacked arrays (``x`` (T, 4), ``P`` (T, 4, 4), ``r`` (T,)) so that each
 step is a handful of vectorised numpy operations whatever the number of tracks.
@@ -82,6 +83,29 @@ def _position_covariance(scan: Scan, z: Array, tuning: SensorTuning) -> Array:
     return J @ np.diag([tuning.r_range, tuning.r_bearing]) @ np.swapaxes(J, 1, 2)
 
 
+def speed_excess(x: Array, P: Array, v_max: float) -> tuple[Array, Array]:
+    """Each track's estimated speed above ``v_max`` [m/s] and the standard deviation of its speed
+    estimate (the velocity covariance along the velocity direction): ``(|v̂| − v_max, σ_|v|)``."""
+    v = x[:, [1, 3]]
+    speed = np.hypot(v[:, 0], v[:, 1])
+    u = v / np.where(speed > 0, speed, 1.0)[:, None]
+    Pv = P[:, [1, 3]][:, :, [1, 3]]
+    var = np.einsum("ti,tij,tj->t", u, Pv, u)
+    return speed - v_max, np.sqrt(np.maximum(var, 0.0))
+
+
+def too_fast(x: Array, P: Array, config: TrackerConfig) -> NDArray[np.bool_]:
+    """Tracks whose speed is inconsistent with the tuning's ``v_max``: beyond it by more than
+    ``speed_gate_margin`` + ``speed_gate_sigma`` standard deviations of the speed estimate, or faster
+    than ``speed_gate_limit`` × ``v_max`` (all False when ``speed_gate_sigma`` is None: the gate is off)."""
+    c = config
+    if c.speed_gate_sigma is None or not x.shape[0]:
+        return np.zeros(x.shape[0], dtype=bool)
+    excess, sigma = speed_excess(x, P, c.v_max)
+    tolerance = np.minimum(c.speed_gate_margin + c.speed_gate_sigma * sigma, (c.speed_gate_limit - 1.0) * c.v_max)
+    return excess > tolerance
+
+
 class JIPDATracker:
     """Multi-target JIPDA tracker; feed it :class:`Scan` objects in time order with :meth:`step`."""
 
@@ -94,6 +118,8 @@ class JIPDATracker:
         self.confirmed = np.zeros(0, dtype=bool)
         self.time: float | None = None
         self._next_id = 1
+        self.deleted_too_fast = 0
+        """Confirmed tracks deleted so far for a speed beyond ``v_max`` (:func:`too_fast`)."""
         # Unassociated positional measurements of each sensor's previous scan: (time, pos, cov).
         self._pending: dict[str, tuple[float, Array, Array]] = {}
         self._gates: dict[int, tuple[float, float]] = {}
@@ -216,9 +242,13 @@ class JIPDATracker:
         return associated
 
     def _manage(self) -> None:
+        """Confirm by existence; delete tracks below the termination threshold and confirmed tracks too fast
+        for the tuning's ``v_max`` (:func:`too_fast`)."""
         c = self.config
         self.confirmed |= self.r >= c.confirm_threshold
-        keep = self.r >= c.terminate_threshold
+        fast = self.confirmed & too_fast(self.x, self.P, c)
+        self.deleted_too_fast += int(fast.sum())
+        keep = (self.r >= c.terminate_threshold) & ~fast
         if not keep.all():
             self.x, self.P, self.r, self.ids, self.confirmed = (
                 self.x[keep],

@@ -6,14 +6,12 @@ water reflects the laser away), which the sensors model by cutting rays at the s
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import trimesh
 
 from seatwin.errors import InputError
 from seatwin.geo.frames import yaw_matrix
-from seatwin.layout import DEFAULT_LAYOUT, HarbourLayout, LandRaster, read_land_raster
+from seatwin.layout import DEFAULT_LAYOUT, HarbourLayout, LandRaster, harbour_map
 from seatwin.world.objects import WorldObject
 from seatwin.world.shapes import block, merge
 from seatwin.world.vessels import REFLECTIVITY, generic
@@ -117,20 +115,13 @@ def harbour_from_raster(
 
 
 def build_harbour(spec: object = "default") -> list[WorldObject]:
-    """Harbour objects for a scenario's ``environment['harbour']``: ``"default"``, ``"none"``,
-    a :class:`HarbourLayout`, a :class:`LandRaster`, or a raster path (``.bin``/``.yaml``)."""
-    if isinstance(spec, HarbourLayout):
-        return harbour_from_layout(spec)
-    if isinstance(spec, LandRaster):
-        return harbour_from_raster(spec)
-    if spec is None or (isinstance(spec, str) and spec.lower() in ("none", "open", "open_water")):
+    """Harbour objects for a scenario's ``environment['harbour']``: ``"default"``, ``"ravnkloa"``,
+    ``"none"``, a :class:`HarbourLayout`, a :class:`LandRaster`, or a raster path (``.bin``/``.yaml``)
+    (:func:`seatwin.layout.harbour_map`)."""
+    try:
+        m = harbour_map(spec)
+    except InputError as exc:
+        raise InputError(exc.source, exc.detail, where=exc.where or "environment.harbour") from exc
+    if m is None:
         return []
-    if isinstance(spec, str) and spec.lower() == "default":
-        return harbour_from_layout(DEFAULT_LAYOUT)
-    if isinstance(spec, (str, Path)) and Path(spec).suffix.lower() in (".bin", ".yaml", ".yml"):
-        return harbour_from_raster(read_land_raster(spec))
-    raise InputError(
-        None,
-        f"unknown harbour {spec!r}; expected 'default', 'none' or a land raster .bin/.yaml path",
-        where="environment.harbour",
-    )
+    return harbour_from_layout(m) if isinstance(m, HarbourLayout) else harbour_from_raster(m)

@@ -57,7 +57,8 @@ def test_errors_verify_prints_the_report(results: dict[str, ModeResult], tmp_pat
     from seatwin.cli.main import run
     from seatwin.sensors.depthbuffer import verify
 
-    monkeypatch.setattr(verify, "run_verification", lambda columns=1800: results)  # the module's results, not a second run
+    # the module's results, not a second run
+    monkeypatch.setattr(verify, "run_verification", lambda columns=1800, plane=False: results)
     rings = verify.ground_rings
     monkeypatch.setattr(verify, "ground_rings", lambda: rings(columns=360))
     assert run(["errors", "--verify", "--plots", str(tmp_path / "figs")]) == 0

@@ -59,7 +59,7 @@ def test_agrees_with_print_uses_the_printed_precision() -> None:
 def test_cli_json_shape(capsys: pytest.CaptureFixture[str]) -> None:
     assert run(["errors", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert set(data) == {"rows"}
+    assert set(data) == {"rows", "range_bound"}
     assert [r["sensor"] for r in data["rows"]][:2] == ["rgb", "lidar"]
     for r in data["rows"]:
         assert set(r) == KEYS

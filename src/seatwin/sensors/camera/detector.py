@@ -54,7 +54,8 @@ def detection_probability(height_px: ArrayLike, visible: ArrayLike, cfg: LabelDe
 
 @dataclass(frozen=True)
 class Detection:
-    """One detected box (pixels, centre and size), its confidence and the instance it came from ("" = false)."""
+    """One detected box (pixels, centre and size), its confidence and the instance it came from ("" = a false
+    detection of the ``label`` detector, or unknown: the ``onnx`` detector)."""
 
     center_x: float
     center_y: float

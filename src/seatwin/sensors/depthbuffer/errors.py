@@ -120,3 +120,76 @@ def height_from_memory(b_s: float, n_c: int, n_cd: int, vfov_s: float) -> float:
 def camera_count_gain(n_c: ArrayLike) -> NDArray[np.float64]:
     """``1 / cos(π/N_c)``, the factor of ``C_2`` in 4.34 plotted in Fig. 4.8."""
     return 1.0 / np.cos(np.pi / np.asarray(n_c, dtype=np.float64))
+
+
+# --------------------------------------------------------------------------------------------
+# The complete range error of a depth-buffer lidar return (storage term + grazing term).
+#
+# 4.20–4.36 bound the error of a point *on the sampled pixel ray*. The filter (4.18, truncated
+# by 4.8) samples the ray through the centre of the pixel that contains the beam, up to half a
+# pixel diagonal off the beam; on a surface seen at incidence i (from the normal) that ray meets
+# the surface at another range: the grazing term, which grows as 1/cos i and is not in 4.22.
+# ``--lidar-mode depthbuffer-plane`` intersects the beam itself with the pixel's surface plane,
+# which removes the grazing term on planar surfaces and leaves the storage term (times
+# cos(i − δ)/cos i from intersecting an oblique plane).
+
+
+def depth_step(depth: ArrayLike, cam: DepthCamera) -> NDArray[np.float64]:
+    """One depth level at view depth ``D = −z^v > 0``: ``|z^v_ε| = D² / (C_1 − D)`` (the z row of 4.21)."""
+    d = np.asarray(depth, dtype=np.float64)
+    return d**2 / (c1(cam) - d)
+
+
+def pixel_deviation_max(cam: DepthCamera) -> float:
+    """The largest angle δ between a beam and the centre ray of the pixel containing it (4.18 with 4.8).
+
+    Half a pixel diagonal seen from the image centre, where pixels subtend the largest angle:
+    ``δ_max = atan(√2 tan(VFOV_c/2) / N_c,h)`` (square pixels, 4.3).
+    """
+    return math.atan(math.sqrt(2.0) * math.tan(cam.vfov_c / 2.0) / cam.n_ch)
+
+
+def storage_term(range_m: ArrayLike, cam: DepthCamera, levels: float = 1.0) -> NDArray[np.float64]:
+    """Range error of ``levels`` depth levels (4.21's ``z^v_ε``) at range ``r`` along a pixel ray.
+
+    Along a ray with range ``k`` per unit depth the error is ``levels · k · D²/(C_1 − D)`` with
+    ``D = r/k``, largest on the optical axis (``k = 1``): ``levels · r²/(C_1 − r)``. ``levels = 1``
+    for the thesis's back-projection of the truncated ``z^d`` (4.8, 4.37); ½ for a point rebuilt
+    from a rounded depth (a GPU rounds to the nearest level).
+    """
+    return levels * depth_step(range_m, cam)
+
+
+def grazing_term(range_m: ArrayLike, deviation: ArrayLike, incidence: ArrayLike) -> NDArray[np.float64]:
+    """Range error of sampling a plane along a ray ``δ`` off the beam, the beam at incidence ``i``.
+
+    A beam meets a plane at distance ``h`` at range ``r = h/cos i``; a ray turned by ``δ`` towards
+    grazing meets it at ``h/cos(i + δ)``: ``Δr = r (cos i / cos(i + δ) − 1)`` ≈ ``r δ tan i`` —
+    the issue's ``R·δθ/tan β`` with ``β = π/2 − i`` the angle to the surface. ``inf`` where
+    ``i + δ ≥ π/2`` (the ray misses the plane). Extends 4.22, which assumes the point lies on the beam.
+    """
+    r, d, i = np.broadcast_arrays(*(np.asarray(a, dtype=np.float64) for a in (range_m, deviation, incidence)))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = r * (np.cos(i) / np.cos(i + d) - 1.0)
+    return np.where(i + d < math.pi / 2.0, out, np.inf)
+
+
+def range_error_bound(
+    range_m: ArrayLike, incidence: ArrayLike, cam: DepthCamera, plane: bool = False, levels: float | None = None
+) -> NDArray[np.float64]:
+    """The complete bound on ``|Δr|`` of a depth-buffer lidar return on a planar surface.
+
+    Thesis filter (``plane=False``): ``storage_term(r, levels=1) + grazing_term(r, δ_max, i)``
+    (4.21 + the grazing term, ``δ_max`` by :func:`pixel_deviation_max`). Plane intersection
+    (``plane=True``): the storage error ``e`` of the pixel's point moves the plane by ``e·|n·s|``
+    along its normal, and the beam's intersection by ``e·|n·s|/|n·u| ≤ e·cos(max(i − δ_max, 0))/cos i``
+    (``levels = ½``: the rasteriser rounds). Curved surfaces and edges are not covered.
+    """
+    r = np.asarray(range_m, dtype=np.float64)
+    i = np.asarray(incidence, dtype=np.float64)
+    dev = pixel_deviation_max(cam)
+    if not plane:
+        return storage_term(r, cam, 1.0 if levels is None else levels) + grazing_term(r, dev, i)
+    with np.errstate(divide="ignore"):
+        gain = np.where(i < math.pi / 2.0, np.cos(np.maximum(i - dev, 0.0)) / np.cos(i), np.inf)
+    return storage_term(r, cam, 0.5 if levels is None else levels) * gain

@@ -20,10 +20,14 @@ import math
 from dataclasses import dataclass, field
 
 from seatwin.sensors.depthbuffer.errors import (
+    grazing_term,
     height_from_memory,
     max_error,
     max_error_conditions,
     max_error_numeric,
+    pixel_deviation_max,
+    range_error_bound,
+    storage_term,
     video_memory,
     video_memory_lidar,
 )
@@ -210,6 +214,39 @@ def table_rows() -> list[TableRow]:
     ]
 
 
+BOUND_RANGES_M = (10.0, 25.0, 50.0, 100.0)
+BOUND_INCIDENCES_DEG = (0.0, 45.0, 60.0, 75.0, 85.0)
+
+
+def range_bound(row: TableRow | None = None) -> dict:
+    """The complete range-error bound next to Table 4.1, for the depth-buffer lidar's row (``lidar_eq417``).
+
+    Per range and incidence (from the normal): the storage term (one level of 4.21, the thesis's
+    truncated ``z^d``), the grazing term at the largest pixel deviation ``δ_max``, their sum (the
+    thesis's filter) and the bound of ``depthbuffer-plane`` on a planar surface with the 24-bit
+    buffer (:func:`~seatwin.sensors.depthbuffer.errors.range_error_bound`).
+    """
+    row = row if row is not None else lidar_equation_row("lidar_eq417", 8, n_ch=PRINTED_LIDAR.n_ch)
+    cam = row.camera
+    dev = pixel_deviation_max(cam)
+    rows = []
+    for r in BOUND_RANGES_M:
+        for i_deg in BOUND_INCIDENCES_DEG:
+            i = math.radians(i_deg)
+            rows.append(
+                {
+                    "range_m": r,
+                    "incidence_deg": i_deg,
+                    "storage_m": float(storage_term(r, cam)),
+                    "grazing_m": float(grazing_term(r, dev, i)),
+                    "filter_m": float(range_error_bound(r, i, cam)),
+                    "plane_m": float(range_error_bound(r, i, cam, plane=True)),
+                }
+            )
+    return {"sensor": row.sensor, "pixel_deviation_max_deg": math.degrees(dev), "rows": rows}
+
+
 def table_json() -> dict:
-    """``{"rows": [...]}`` as printed by ``seatwin errors --json``."""
-    return {"rows": [r.to_json() for r in table_rows()]}
+    """``{"rows": [...], "range_bound": {...}}`` as printed by ``seatwin errors --json``."""
+    rows = table_rows()
+    return {"rows": [r.to_json() for r in rows], "range_bound": range_bound(rows[2])}

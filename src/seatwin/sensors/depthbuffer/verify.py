@@ -85,6 +85,9 @@ class ModeResult:
     """|cos| of the angle between each compared beam and the surface normal."""
     grazing_deg: float = 80.0
     """Incidence beyond which a beam counts as grazing (reported, not excluded)."""
+    fallback: int | None = None
+    """Plane mode: returns that fell back to the thesis point (an edge), among ``n_returns``."""
+    n_returns: int = 0
 
     def summary(self) -> dict:
         d, a = self.distance, self.all_distance
@@ -106,6 +109,7 @@ class ModeResult:
             "max_non_grazing": float(d[steep].max()) if steep.any() else float("nan"),
             "p99_with_edges": q(a, 99),
             "max_with_edges": float(a.max()) if a.size else float("nan"),
+            **({"fallback_share": self.fallback / max(self.n_returns, 1)} if self.fallback is not None else {}),
         }
 
     def binned(self, edges: NDArray[np.float64]) -> dict[str, list[float]]:
@@ -130,6 +134,19 @@ def _local_bound(points_sensor: NDArray[np.float64], db: DepthBufferLidar, sel: 
     return np.abs(z / (k1 + z)) * np.sqrt((np.abs(q_v[:, 0]) + k2) ** 2 + (np.abs(q_v[:, 1]) + k2) ** 2 + z**2)
 
 
+def _exact(
+    caster: object, directions: NDArray[np.float64], origin: NDArray[np.float64], rotation: NDArray[np.float64], far: float
+) -> tuple[object, NDArray[np.float64], NDArray[np.bool_]]:
+    """The exact cast of every beam (world frame), its world directions and where it returns (cut at the water)."""
+    from seatwin.sensors.lidar_physics import water_limit
+
+    o = np.broadcast_to(origin, (len(directions), 3))
+    beam_w = directions @ rotation.T
+    exact = caster.cast(o, beam_w, max_range=far)  # type: ignore[attr-defined]
+    wl = water_limit(o[:, 2].astype(np.float32), beam_w[:, 2].astype(np.float32), far)
+    return exact, beam_w, (exact.object_id >= 0) & (exact.range <= wl)
+
+
 def compare_mode(
     caster: object,
     directions: NDArray[np.float64],
@@ -145,11 +162,7 @@ def compare_mode(
 
     db = DepthBufferLidar(directions, config, grid)
     n = len(db)
-    o = np.broadcast_to(origin, (n, 3))
-    beam_w = db.directions @ rotation.T
-    exact = caster.cast(o, beam_w, max_range=config.far)  # type: ignore[attr-defined]
-    wl = water_limit(o[:, 2].astype(np.float32), beam_w[:, 2].astype(np.float32), config.far)
-    e_hit = (exact.object_id >= 0) & (exact.range <= wl)
+    exact, beam_w, e_hit = _exact(caster, db.directions, origin, rotation, config.far)
 
     def cut(oo: NDArray[np.float64], uu: NDArray[np.float64]) -> NDArray[np.float64]:
         # the same limits as the exact beams: the water, and the lidar's range f
@@ -183,13 +196,95 @@ def compare_mode(
     )
 
 
+def frozen_batch(
+    directions: NDArray[np.float64],
+    origin: NDArray[np.float64],
+    rotation: NDArray[np.float64],
+    t: float,
+    rings: int,
+    reach: float,
+) -> object:
+    """A :class:`~seatwin.sensors.rangemodel.BeamBatch` of one sweep fired at one instant from a
+    sensor at rest (``directions``: azimuth-major, ``rings`` per column), cut at the water."""
+    from seatwin.sensors.lidar import _column_bearings
+    from seatwin.sensors.lidar_physics import water_limit
+    from seatwin.sensors.rangemodel import BeamBatch
+
+    d32 = np.asarray(directions, np.float32)
+    dw = (d32.astype(np.float64) @ np.asarray(rotation).T).astype(np.float32)
+    o = np.broadcast_to(np.asarray(origin, np.float32), dw.shape).copy()
+    cols = len(dw) // rings
+    bearing, half = _column_bearings(dw, rings)
+    beam = np.arange(len(dw))
+    return BeamBatch(
+        o, dw, water_limit(o[:, 2], dw[:, 2], reach), beam, beam // rings, np.full(cols, float(t)),
+        np.tile(np.asarray(origin, np.float64), (cols, 1)), bearing, half, rings, d32,
+    )  # fmt: skip
+
+
+def compare_plane(
+    scene: object,
+    caster: object,
+    directions: NDArray[np.float64],
+    origin: NDArray[np.float64],
+    rotation: NDArray[np.float64],
+    config: DepthBufferConfig,
+    t: float,
+    rings: int,
+    linear_depth: bool = True,
+) -> ModeResult:
+    """The ``depthbuffer-plane`` model (rasterised, OpenGL) against the exact beams, scene frozen at ``t``.
+
+    Its points lie on the beams, so the distance is the range error. Compared: beams where both
+    return the same object and the plane was used; returns that fell back to the thesis point
+    (edges) are counted and kept in ``all_distance``.
+    """
+    from seatwin.sensors.depthbuffer.errors import range_error_bound
+    from seatwin.sensors.depthbuffer.plane_range import plane_ranges
+
+    exact, beam_w, e_hit = _exact(caster, directions, origin, rotation, config.far)
+    batch = frozen_batch(directions, origin, rotation, t, rings, config.far)
+    res = plane_ranges(scene, batch, config, linear_depth)  # type: ignore[arg-type]
+    hit = res.object_id >= 0
+    both = e_hit & hit
+    p_exact = np.where(e_hit, exact.range, np.nan)[:, None] * directions
+    dist = np.linalg.norm(res.sensor_points.astype(np.float64) - p_exact, axis=1)
+    same = both & (exact.object_id == res.object_id)
+    fb = np.asarray(res.fallback)
+    keep = same & ~fb
+    cos_i = np.abs(np.einsum("ij,ij->i", exact.normal[keep].astype(np.float64), beam_w[keep]))
+    cos_i /= np.maximum(np.linalg.norm(exact.normal[keep].astype(np.float64), axis=1), 1e-12)
+    cam = config.camera()
+    return ModeResult(
+        name="plane" if linear_depth else "plane_24bit",
+        eps_max=max_error(cam),
+        range=exact.range[keep].astype(np.float64),
+        distance=dist[keep],
+        local_bound=range_error_bound(exact.range[keep], np.arccos(np.clip(cos_i, 0.0, 1.0)), cam, plane=True),
+        n_beams=len(directions),
+        n_compared=int(keep.sum()),
+        edges={
+            "one_returns": int((e_hit != hit).sum()),
+            "different_object": int((both & ~same).sum()),
+            "fallback": int((same & fb).sum()),
+        },
+        all_distance=dist[both],
+        cos_incidence=cos_i,
+        fallback=int((fb & hit).sum()),
+        n_returns=int(hit.sum()),
+    )
+
+
 def run_verification(
     config: DepthBufferConfig = DepthBufferConfig(),
     columns: int = 1800,
     t: float = 1.0,
     scene: object | None = None,
+    plane: bool = False,
 ) -> dict[str, ModeResult]:
-    """Filter and legacy results on the verification scene (VLP-16 beams, ``columns`` per turn)."""
+    """Filter and legacy results on the verification scene (VLP-16 beams, ``columns`` per turn); with
+    ``plane``, also the ``depthbuffer-plane`` model rasterised by OpenGL (``plane``: float32 view
+    depth; ``plane_24bit``: the points rebuilt from the 24-bit depth buffer)."""
     from seatwin.engine import make_caster
     from seatwin.sensors.lidar_config import VLP16, LidarMount
 
@@ -203,6 +298,10 @@ def run_verification(
         cfg = DepthBufferConfig(**{**config.__dict__, "use_filter": use_filter})
         res = compare_mode(caster, dirs, mount.translation, mount.rotation(), cfg, grid=grid)
         out[res.name] = res
+    if plane:
+        for linear in (True, False):
+            res = compare_plane(scene, caster, dirs, mount.translation, mount.rotation(), config, t, VLP16.rings, linear)
+            out[res.name] = res
     return out
 
 
@@ -228,17 +327,27 @@ def ground_rings(n_c: int = 4, height: float = 3.0, columns: int = 1800, far: fl
     return out
 
 
-def verification_report(columns: int = 1800, plot: str | Path | None = None) -> dict[str, dict]:
-    """The part-5 numbers per mode (``filter``, ``legacy``): :meth:`ModeResult.summary` plus the
-    distances in 10 m range bins; with ``plot``, also the verification figure (PNG) there.
+def verification_report(columns: int = 1800, plot: str | Path | None = None, plane: bool = True) -> dict[str, dict]:
+    """The part-5 numbers per mode (``filter``, ``legacy``, and with ``plane`` the rasterised
+    ``plane`` and ``plane_24bit``): :meth:`ModeResult.summary` plus the distances in 10 m range
+    bins; with ``plot``, also the verification figure (PNG) there.
 
-    ``seatwin errors --verify`` prints this as JSON.
+    ``seatwin errors --verify`` prints this as JSON. Without an EGL/GL driver the plane modes are
+    left out and ``plane_error`` says why.
     """
-    res = run_verification(columns=columns)
+    from seatwin.errors import InputError
+
+    try:
+        res = run_verification(columns=columns, plane=plane)
+        skipped = None
+    except InputError as exc:  # no headless OpenGL here: the ray-cast modes still stand
+        res, skipped = run_verification(columns=columns), str(exc)
     bins = np.arange(0.0, 101.0, 10.0)
-    out = {name: {**r.summary(), "bins_m": bins.tolist(), "binned": r.binned(bins)} for name, r in res.items()}
+    out: dict[str, dict] = {name: {**r.summary(), "bins_m": bins.tolist(), "binned": r.binned(bins)} for name, r in res.items()}
+    if skipped is not None:
+        out["plane_error"] = {"error": skipped}
     if plot is not None:
         from seatwin.sensors.depthbuffer.plots import fig_verification
 
-        fig_verification(Path(plot), res, ground_rings())
+        fig_verification(Path(plot), {k: v for k, v in res.items() if k in ("filter", "legacy")}, ground_rings())
     return out

@@ -1,0 +1,47 @@
+"""Run a campaign: its grid as jobs on the engine (Ray by default), then results.csv and campaign.json."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from pathlib import Path
+
+from seatwin.campaign.engine import Engine, run_jobs
+from seatwin.campaign.grid import SYNTHETIC, expand_grid
+from seatwin.campaign.job import campaign_job
+from seatwin.campaign.results import CampaignResult, write_results
+from seatwin.campaign.spec import CampaignSpec, load_campaign
+
+
+def run_campaign(
+    spec: CampaignSpec | str | os.PathLike[str],
+    out: str | Path,
+    *,
+    address: str | None = None,
+    workers: int | None = None,
+    engine: Engine = "ray",
+    progress: Callable[[int, int], None] | None = None,
+) -> CampaignResult:
+    """Run the campaign ``spec`` (or its YAML file) into ``out``; jobs finished there by an earlier run are not run again.
+
+    ``engine="ray"``: a local Ray instance of ``workers`` CPUs (default: all), or the Ray cluster at
+    ``address`` (``workers`` then caps the jobs in flight); ``workers=0`` or ``engine="sequential"``
+    runs the jobs in this process, one by one. A failed job is recorded with its error (in
+    results.csv and campaign.json) and the others go on. ``progress(done, total)`` counts jobs.
+    """
+    source = None
+    if not isinstance(spec, CampaignSpec):
+        source = spec
+        spec = load_campaign(spec)
+    grid = expand_grid(spec, source)
+    report = run_jobs(
+        grid.jobs,
+        campaign_job,
+        out,
+        engine=engine,
+        address=address,
+        workers=workers,
+        progress=progress,
+        keep=lambda job: job.params["kind"] == SYNTHETIC,  # the rows; a reference's tracks stay in its file
+    )
+    return write_results(out, grid, report)

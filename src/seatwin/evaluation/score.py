@@ -1,0 +1,460 @@
+"""An unpaired fidelity score: how far a synthetic dataset's *error distributions* are from the real one's.
+
+Why not AHED alone (docs/fidelity-score.md has the derivation): AHED pairs the real and the
+synthetic estimate instant by instant. Their noise is independent, so the paired distance has a
+floor that shrinks when the synthetic sensor is *less* noisy than reality — a too-clean model
+scores better than a faithful one. This score compares distributions instead, and never pairs
+instants, so the two datasets need not share draws, seeds or even scan times.
+
+Per target (S1–S3), over the truth-defined instants of a window, pooled over a dataset's runs
+(the synthetic seeds):
+
+* (S1) ``H = HED(N(ē_r, Σ_r), N(ē_s, Σ_s))``: the Hellinger distance (5.30, standard form) between
+  Gaussians fitted to the tracker's position errors ``e = estimate − truth`` (north, east) of the
+  real and of the synthetic runs;
+* (S2) the coverage term ``|c_r − c_s|``, ``c`` = share of the instants with an associated track;
+* (S3) ``S = 1 − (1 − H)(1 − |c_r − c_s|)``: 0 when both agree, 1 when either term is 1.
+
+Plot level (what no track-level score sees, e.g. clutter the tracker rejects), per dataset a
+Poisson rate per scan: clutter plots, and false tracks alive (per scan, not per run: a per-run
+count compared between single runs has a sampling floor H ≈ 0.47 whatever its size):
+
+* (S4) ``H²(λ_r, λ_s) = 1 − exp(−(√λ_r − √λ_s)² / 2)``: the Hellinger distance between two
+  Poisson distributions;
+* (S6) cluster shape: HED between Gaussians fitted to the lidar clusters' (log point count,
+  log thickness) — what range noise, ray drop and dissipation change long before the tracks do.
+
+Overall (S5): ``S = 1 − (1 − S̄)(1 − H_clutter)(1 − H_false)(1 − H_shape)``, ``S̄`` the mean of the
+defined target scores; terms that are undefined (no plots given, e.g. track files; no lidar
+clusters) are left out and named.
+
+Every value comes with a circular block bootstrap interval (blocks of consecutive instants or
+scans within each run) and the numbers behind
+it. A value is *refused* — None, with the reason — when too few instants support it.
+Intervals are bias-shifted (see :func:`_with_ci`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from seatwin.evaluation.bootstrap import circular_block_indices, percentile_interval
+from seatwin.evaluation.evaluate import Evaluation, TargetSeries
+from seatwin.evaluation.hellinger import hellinger
+from seatwin.evaluation.tracks_io import Tracks
+from seatwin.evaluation.truth import TruthSet
+from seatwin.rng import frame_rng
+
+ERROR_FLOOR_M = 0.01
+"""σ floor [m] added to fitted error covariances: keeps a (near-)noiseless run's Gaussian proper."""
+
+
+@dataclass(frozen=True)
+class ScoreOptions:
+    """Conventions of the score (documented in docs/fidelity-score.md)."""
+
+    n_min: int = 10
+    """Fewest instants with a track, per dataset, behind an error distribution (else refused)."""
+    n_boot: int = 200
+    block: int = 10
+    """Bootstrap block length [instants or scans]."""
+    level: float = 0.95
+    seed: int = 0
+    clutter_gate: float = 25.0
+    """A plot or confirmed track farther than this [m] from every target is clutter or a false track
+    (vessels are up to ~30 m long; a radar's plots scatter further: the joyride method uses 60 m)."""
+
+
+@dataclass(frozen=True)
+class TargetErrors:
+    """One run's view of one target: position error [m] (north, east) per truth-defined instant, NaN without a track."""
+
+    error: NDArray[np.float64]
+
+    @property
+    def has_track(self) -> NDArray[np.bool_]:
+        return np.isfinite(self.error[:, 0])
+
+    @classmethod
+    def from_series(cls, series: TargetSeries, window: tuple[float, float] | None = None) -> TargetErrors:
+        """The errors of an evaluated target (:class:`TargetSeries`), optionally within ``window`` (POSIX, inclusive)."""
+        keep = np.isfinite(series.truth[:, 0])
+        if window is not None:
+            keep &= (series.time >= window[0] - 1e-9) & (series.time <= window[1] + 1e-9)
+        e = series.state[:, [0, 2]] - series.truth[:, [0, 2]]
+        e[~series.valid] = np.nan
+        return cls(e[keep])
+
+
+def gaussian_fit(errors: ArrayLike, floor: float = ERROR_FLOOR_M) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Mean and covariance (ddof 1, plus ``floor``² I) of (n, d) error samples, n ≥ 2."""
+    e = np.asarray(errors, float)
+    return e.mean(axis=0), np.cov(e, rowvar=False, ddof=1).reshape(e.shape[1], e.shape[1]) + floor**2 * np.eye(e.shape[1])
+
+
+def error_hellinger(real: ArrayLike, synthetic: ArrayLike, floor: float = ERROR_FLOOR_M) -> float:
+    """(S1) HED (5.30, standard form) between Gaussians fitted to the real and the synthetic errors."""
+    mr, pr = gaussian_fit(real, floor)
+    ms, ps = gaussian_fit(synthetic, floor)
+    return float(hellinger(ms, ps, mr, pr, "standard"))
+
+
+def error_hellinger_floor(n_real: int, n_synthetic: int, dim: int = 2) -> float:
+    """(S1') The distance (S1) expected from sampling alone when both error sets come from one Gaussian:
+    ``H² ≈ k/8 · (1/n_r + 1/n_s)``, ``k = d + d(d+1)/2`` fitted parameters (H² ≈ δθᵀ I δθ / 8 for
+    small parameter errors δθ, Fisher information I). Counts independent instants: with autocorrelated
+    tracker errors the real floor is higher."""
+    k = dim + dim * (dim + 1) // 2
+    return float(np.sqrt(k / 8.0 * (1.0 / n_real + 1.0 / n_synthetic)))
+
+
+def combine(*terms: float) -> float:
+    """(S3, S5) ``1 − Π(1 − tᵢ)`` of distances in [0, 1]: 0 only when every term is 0, 1 when any is 1."""
+    return float(1.0 - np.prod([1.0 - t for t in terms]))
+
+
+def poisson_hellinger(rate_real: float, rate_synthetic: float) -> float:
+    """(S4) Hellinger distance between Poisson(λ_r) and Poisson(λ_s): ``sqrt(1 − exp(−(√λ_r − √λ_s)²/2))``."""
+    d = np.sqrt(rate_real) - np.sqrt(rate_synthetic)
+    return float(np.sqrt(-np.expm1(-0.5 * d * d)))
+
+
+@dataclass
+class ScoreValue:
+    """A score term: its value (None when refused, with ``reason``), bootstrap interval and the numbers behind it."""
+
+    value: float | None
+    ci_low: float | None = None
+    ci_high: float | None = None
+    reason: str | None = None
+    counts: dict[str, float] = field(default_factory=dict)
+    replicates: NDArray[np.float64] | None = field(default=None, repr=False)
+
+    def to_dict(self) -> dict:
+        d = asdict(self)
+        d.pop("replicates")
+        return d
+
+
+def _refused(reason: str, **counts: float) -> ScoreValue:
+    return ScoreValue(None, reason=reason, counts=dict(counts))
+
+
+def _with_ci(value: float, replicates: NDArray[np.float64], level: float, **counts: float) -> ScoreValue:
+    """``value`` with the bias-shifted percentile interval of its bootstrap ``replicates``.
+
+    A distance is biased upwards by sampling noise, and a bootstrap replicate (noise on noise) twice
+    over: the replicates' percentile interval is shifted down by the bootstrap's own bias estimate
+    (mean replicate − value), clipped to [0, 1] and widened to hold the value."""
+    ci = percentile_interval(replicates, level)
+    if ci is None:
+        return ScoreValue(value, None, None, None, dict(counts), replicates)
+    bias = float(np.mean(replicates[np.isfinite(replicates)])) - value
+    lo, hi = (float(np.clip(c - bias, 0.0, 1.0)) for c in ci)
+    return ScoreValue(value, min(lo, value), max(hi, value), None, dict(counts), replicates)
+
+
+def _pool(runs: Sequence[TargetErrors], idx: Sequence[NDArray[np.int64]] | None = None) -> tuple[NDArray[np.float64], int]:
+    """Errors at the instants with a track, pooled over runs (resampled at ``idx`` per run), and the instant count."""
+    parts = [r.error if idx is None else r.error[i] for r, i in zip(runs, idx or [None] * len(runs))]
+    e = np.concatenate(parts) if parts else np.empty((0, 2))
+    return e[np.isfinite(e[:, 0])], len(e)
+
+
+def _target_value(real: tuple[NDArray[np.float64], int], synth: tuple[NDArray[np.float64], int]) -> float:
+    (er, nr), (es, ns) = real, synth
+    c_r, c_s = len(er) / nr, len(es) / ns
+    h = 1.0 if min(len(er), len(es)) < 2 else error_hellinger(er, es)
+    return combine(h, abs(c_r - c_s))
+
+
+def target_score(
+    real: Sequence[TargetErrors], synthetic: Sequence[TargetErrors], options: ScoreOptions | None = None, stream: str = ""
+) -> ScoreValue:
+    """(S1–S3) The score of one target from its real runs and its synthetic runs (pooled; e.g. one per seed).
+
+    Refused when both sides have fewer than ``n_min`` instants with a track. When only one side has
+    (and the truth has at least ``n_min`` instants), that side's error distribution cannot be
+    estimated while the other's can: the target is as good as never tracked there — total
+    disagreement, S = 1 (``counts.one_sided``)."""
+    o = options or ScoreOptions()
+    er, nr = _pool(real)
+    es, ns = _pool(synthetic)
+    counts = {"n_real": len(er), "n_synthetic": len(es), "instants_real": nr, "instants_synthetic": ns}
+    if nr == 0 or ns == 0:
+        return _refused("no ground-truth instants in the window", **counts)
+    if not len(er) and not len(es):
+        return _refused("neither dataset tracked the target", **counts)
+    if max(len(er), len(es)) < o.n_min or min(nr, ns) < o.n_min:
+        return _refused(f"fewer than {o.n_min} instants with a track ({len(er)} real, {len(es)} synthetic)", **counts)
+    if min(len(er), len(es)) < o.n_min:
+        return ScoreValue(1.0, 1.0, 1.0, None, counts | {"one_sided": True}, np.ones(o.n_boot))
+    value = _target_value((er, nr), (es, ns))
+    rng = frame_rng(o.seed, f"score/target/{stream}", 0)
+    reps = np.empty(o.n_boot)
+    for b in range(o.n_boot):
+        ir = [circular_block_indices(len(r.error), o.block, rng) for r in real]
+        is_ = [circular_block_indices(len(s.error), o.block, rng) for s in synthetic]
+        reps[b] = _target_value(_pool(real, ir), _pool(synthetic, is_))
+    counts |= {"coverage_real": len(er) / nr, "coverage_synthetic": len(es) / ns}
+    if min(len(er), len(es)) >= 2:
+        counts["error_hellinger"] = error_hellinger(er, es)
+        counts["error_hellinger_floor"] = error_hellinger_floor(len(er), len(es))
+    return _with_ci(value, reps, o.level, **counts)
+
+
+def rate_score(
+    real: Sequence[ArrayLike],
+    synthetic: Sequence[ArrayLike],
+    options: ScoreOptions | None = None,
+    stream: str = "",
+    unit: str = "scan",
+) -> ScoreValue:
+    """(S4) Poisson Hellinger distance of per-``unit`` counts (e.g. clutter plots per scan), one array per run
+    in time order; bootstrap: circular blocks of consecutive units within each run."""
+    o = options or ScoreOptions()
+    rr = [np.asarray(c, float) for c in real if len(c)]
+    ss = [np.asarray(c, float) for c in synthetic if len(c)]
+    n_r, n_s = sum(map(len, rr)), sum(map(len, ss))
+    if n_r < o.n_min or n_s < o.n_min:
+        return _refused(f"fewer than {o.n_min} {unit}s ({n_r} real, {n_s} synthetic)", **{f"n_{unit}s_real": n_r})
+
+    def rate(parts: list[NDArray[np.float64]], idx: list[NDArray[np.int64]] | None = None) -> float:
+        tot = sum(float(p.sum() if idx is None else p[i].sum()) for p, i in zip(parts, idx or [None] * len(parts)))
+        return tot / sum(map(len, parts))
+
+    lam_r, lam_s = rate(rr), rate(ss)
+    rng = frame_rng(o.seed, f"score/rate/{stream}", 0)
+    reps = np.array(
+        [
+            poisson_hellinger(
+                rate(rr, [circular_block_indices(len(p), o.block, rng) for p in rr]),
+                rate(ss, [circular_block_indices(len(p), o.block, rng) for p in ss]),
+            )
+            for _ in range(o.n_boot)
+        ]
+    )
+    counts = {
+        f"rate_real_per_{unit}": lam_r,
+        f"rate_synthetic_per_{unit}": lam_s,
+        f"n_{unit}s_real": n_r,
+        f"n_{unit}s_synthetic": n_s,
+    }
+    return _with_ci(poisson_hellinger(lam_r, lam_s), reps, o.level, **counts)
+
+
+def shape_score(
+    real: Sequence[Sequence[ArrayLike]], synthetic: Sequence[Sequence[ArrayLike]], options: ScoreOptions | None = None
+) -> ScoreValue:
+    """(S6) Hellinger distance between Gaussians fitted to the plots' shape features (lidar clusters: log point
+    count, log thickness; :func:`seatwin.perception.lidar.cluster_shape_features`), pooled over scans and runs;
+    ``real``/``synthetic``: per run, per scan in time order, an (M, 2) array. Bootstrap: blocks of scans."""
+    o = options or ScoreOptions()
+    rr = [[np.asarray(f, float).reshape(-1, 2) for f in run] for run in real]
+    ss = [[np.asarray(f, float).reshape(-1, 2) for f in run] for run in synthetic]
+
+    def pool(runs: list[list[NDArray[np.float64]]], idx: list[NDArray[np.int64]] | None = None) -> NDArray[np.float64]:
+        parts = [f for k, run in enumerate(runs) for f in (run if idx is None else [run[i] for i in idx[k]])]
+        return np.concatenate(parts) if parts else np.zeros((0, 2))
+
+    fr, fs = pool(rr), pool(ss)
+    counts = {"n_plots_real": len(fr), "n_plots_synthetic": len(fs)}
+    if not len(fr) and not len(fs):
+        return _refused("no cluster shapes (not a lidar)", **counts)
+    if min(len(fr), len(fs)) < o.n_min:
+        return _refused(f"fewer than {o.n_min} plots with a shape ({len(fr)} real, {len(fs)} synthetic)", **counts)
+    rng = frame_rng(o.seed, "score/shape", 0)
+    reps = np.empty(o.n_boot)
+    for b in range(o.n_boot):
+        br = pool(rr, [circular_block_indices(len(run), o.block, rng) for run in rr])
+        bs = pool(ss, [circular_block_indices(len(run), o.block, rng) for run in ss])
+        reps[b] = error_hellinger(br, bs, 0.0) if min(len(br), len(bs)) >= 2 else np.nan
+    counts |= {"mean_real": fr.mean(axis=0).tolist(), "mean_synthetic": fs.mean(axis=0).tolist()}  # type: ignore[dict-item]
+    return _with_ci(error_hellinger(fr, fs, 0.0), reps, o.level, **counts)
+
+
+PLOT_TERMS = ("clutter", "false_tracks", "shape")
+
+
+@dataclass
+class FidelityScore:
+    """(S5) The overall score and its parts."""
+
+    overall: ScoreValue
+    targets: dict[str, ScoreValue]
+    plots: dict[str, ScoreValue]
+    """Plot-level terms by name (:data:`PLOT_TERMS`)."""
+
+    @property
+    def clutter(self) -> ScoreValue:
+        return self.plots["clutter"]
+
+    @property
+    def false_tracks(self) -> ScoreValue:
+        return self.plots["false_tracks"]
+
+    def to_dict(self) -> dict:
+        return {
+            "score": self.overall.to_dict(),
+            "targets": {k: v.to_dict() for k, v in self.targets.items()},
+            **{k: v.to_dict() for k, v in self.plots.items()},
+        }
+
+
+def overall_score(
+    targets: dict[str, ScoreValue], plots: dict[str, ScoreValue], options: ScoreOptions | None = None
+) -> ScoreValue:
+    """(S5) ``1 − (1 − S̄) Π(1 − H_plot)`` over the defined parts (S̄: mean target score; plot terms: clutter,
+    false tracks, cluster shape); its interval from the parts' bootstrap replicates taken together
+    (replicate b of every part)."""
+    o = options or ScoreOptions()
+    defined = [v for v in targets.values() if v.value is not None]
+    if not defined:
+        reasons = "; ".join(f"{k}: {v.reason}" for k, v in targets.items()) or "no targets"
+        return _refused(f"no target score is defined ({reasons})")
+    used = [v for v in plots.values() if v.value is not None]
+    mean_t = float(np.mean([v.value for v in defined]))
+    value = combine(mean_t, *(v.value for v in used))
+    parts = [np.mean([v.replicates for v in defined], axis=0), *(v.replicates for v in used)]
+    reps = np.array([combine(*(p[b] for p in parts)) for b in range(o.n_boot)])
+    counts = {"n_targets": len(defined), "n_targets_refused": len(targets) - len(defined), "targets_mean": mean_t}
+    out = _with_ci(value, reps, o.level, **counts)
+    left_out = [k for k, v in plots.items() if v.value is None]
+    if left_out:
+        out.reason = "without " + "; ".join(f"{k}: {plots[k].reason}" for k in left_out)
+    return out
+
+
+def _plot_window(tr: Tracks, window: tuple[float, float] | None) -> NDArray[np.int64]:
+    t = tr.plots.times  # type: ignore[union-attr]
+    keep = np.ones(len(t), bool) if window is None else (t >= window[0] - 1e-9) & (t <= window[1] + 1e-9)
+    return np.flatnonzero(keep)
+
+
+def run_shapes(tracks: Sequence[Tracks], window: tuple[float, float] | None = None) -> list[list[NDArray[np.float64]]] | None:
+    """Per run, the plots' shape features of each scan (within ``window``); None if any run has no plot log."""
+    if any(tr.plots is None or tr.plots.shapes is None for tr in tracks):
+        return None
+    return [[tr.plots.shapes[i] for i in _plot_window(tr, window)] for tr in tracks]  # type: ignore[union-attr,index]
+
+
+def run_clutter(
+    tracks: Sequence[Tracks], truth: TruthSet, gate: float, window: tuple[float, float] | None = None
+) -> list[NDArray[np.int64]] | None:
+    """Per run, the clutter count of each scan (:func:`clutter_counts`) from the runs' plot logs; None if any run has none."""
+    out = []
+    for tr in tracks:
+        if tr.plots is None:
+            return None
+        idx = _plot_window(tr, window)
+        out.append(clutter_counts(tr.plots.times[idx], [tr.plots.positions[i] for i in idx], truth, gate))
+    return out
+
+
+def run_far_tracks(
+    tracks: Sequence[Tracks], truth: TruthSet, gate: float, window: tuple[float, float] | None = None
+) -> list[NDArray[np.int64]]:
+    """Per run, at each of its scan instants (within ``window``), the confirmed tracks farther than ``gate`` [m]
+    from every target: false tracks by the same rule as clutter plots (a track of a target that is merely
+    poor, beyond the evaluation's association gate, is not one)."""
+    out = []
+    for tr in tracks:
+        t = tr.scan_times
+        keep = np.ones(len(t), bool) if window is None else (t >= window[0] - 1e-9) & (t <= window[1] + 1e-9)
+        times = t[keep]
+        conf = tr.confirmed
+        at = np.searchsorted(tr.time[conf], times, side="left"), np.searchsorted(tr.time[conf], times, side="right")
+        pos = tr.state[conf][:, [0, 2]]
+        out.append(clutter_counts(times, [pos[a:b] for a, b in zip(*at)], truth, gate))
+    return out
+
+
+def score_runs(
+    real: Sequence[Tracks],
+    synthetic: Sequence[Tracks],
+    truth: TruthSet,
+    real_evaluations: Sequence[Evaluation],
+    synthetic_evaluations: Sequence[Evaluation],
+    options: ScoreOptions | None = None,
+    window: tuple[float, float] | None = None,
+) -> FidelityScore:
+    """The score of synthetic runs against real runs (each with its evaluation against ``truth``): every
+    term from the runs' tracks and plot logs (:func:`fidelity_score`), within ``window`` when given."""
+    o = options or ScoreOptions()
+    return fidelity_score(
+        real_evaluations,
+        synthetic_evaluations,
+        clutter_real=run_clutter(real, truth, o.clutter_gate, window),
+        clutter_synthetic=run_clutter(synthetic, truth, o.clutter_gate, window),
+        false_real=run_far_tracks(real, truth, o.clutter_gate, window),
+        false_synthetic=run_far_tracks(synthetic, truth, o.clutter_gate, window),
+        shapes_real=run_shapes(real, window),
+        shapes_synthetic=run_shapes(synthetic, window),
+        window=window,
+        options=o,
+    )
+
+
+def fidelity_score(
+    real: Sequence[Evaluation],
+    synthetic: Sequence[Evaluation],
+    *,
+    clutter_real: Sequence[ArrayLike] | None = None,
+    clutter_synthetic: Sequence[ArrayLike] | None = None,
+    false_real: Sequence[ArrayLike] | None = None,
+    false_synthetic: Sequence[ArrayLike] | None = None,
+    shapes_real: Sequence[Sequence[ArrayLike]] | None = None,
+    shapes_synthetic: Sequence[Sequence[ArrayLike]] | None = None,
+    window: tuple[float, float] | None = None,
+    options: ScoreOptions | None = None,
+) -> FidelityScore:
+    """The score of synthetic runs (e.g. one per seed) against real runs, all evaluated against the same truth.
+
+    ``clutter_*``: per run, the clutter plots of each scan in time order (:func:`run_clutter`);
+    ``false_*``: per run, the false tracks at each scan (:func:`run_far_tracks`); ``shapes_*``: per run, the
+    plots' shape features per scan (:func:`run_shapes`); without them those terms are refused
+    (:func:`score_runs` computes them all from tracks)."""
+    o = options or ScoreOptions()
+    names = [s.target for s in real[0].summaries] if real else []
+    targets = {
+        name: target_score(
+            [TargetErrors.from_series(e.series[name], window) for e in real],
+            [TargetErrors.from_series(e.series[name], window) for e in synthetic],
+            o,
+            stream=name,
+        )
+        for name in names
+    }
+    no_plots = "no plots (track files carry none)"
+    plots = {
+        "clutter": _refused(no_plots)
+        if clutter_real is None or clutter_synthetic is None
+        else rate_score(clutter_real, clutter_synthetic, o, stream="clutter"),
+        "false_tracks": _refused("no tracks given")
+        if false_real is None or false_synthetic is None
+        else rate_score(false_real, false_synthetic, o, stream="false_tracks"),
+        "shape": _refused(no_plots)
+        if shapes_real is None or shapes_synthetic is None
+        else shape_score(shapes_real, shapes_synthetic, o),
+    }
+    return FidelityScore(overall_score(targets, plots, o), targets, plots)
+
+
+def clutter_counts(times: ArrayLike, plots: Sequence[ArrayLike], truth: TruthSet, gate: float) -> NDArray[np.int64]:
+    """Per scan (at ``times``, POSIX), the plots (north/east) farther than ``gate`` [m] from every target of ``truth``."""
+    tt = np.asarray(times, float)
+    targets = np.stack([truth[n].state_at(tt)[:, [0, 2]] for n in truth.names], axis=1) if truth.names else None
+    out = np.zeros(len(plots), dtype=np.int64)
+    for k, p in enumerate(plots):
+        p = np.asarray(p, float).reshape(-1, 2)
+        t = np.empty((0, 2)) if targets is None else targets[k][np.isfinite(targets[k][:, 0])]
+        if len(p) and len(t):
+            d = np.hypot(p[:, None, 0] - t[None, :, 0], p[:, None, 1] - t[None, :, 1]).min(axis=1)
+            out[k] = int((d > gate).sum())
+        else:
+            out[k] = len(p)
+    return out
