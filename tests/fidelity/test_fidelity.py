@@ -235,3 +235,18 @@ def test_typed_result_writes_the_json(toy_mat, tmp_path):
     j = json.loads((tmp_path / "fidelity.json").read_text())
     assert j["ahed"] == prim.ahed and j["models"]["fitted"]["agents"]["gnn"]["per_seed"][1]["seed"] == 1
     assert list(j)[:5] == ["ahed", "ahed_ci", "n_common", "n_only_real", "n_only_synthetic"] and list(j)[-1] == "dataset"
+
+
+def test_seeds_run_as_engine_jobs_and_resume(toy_mat, tmp_path, monkeypatch):
+    """Every (model, seed) is a campaign-engine job kept in jobs_in/jobs: a second run finds them all
+    finished, runs none, and gives the same result."""
+    from seatwin.fidelity import jobs as fjobs
+    from seatwin.fidelity import run_fidelity
+
+    kw = dict(seeds=2, agents=("gnn",), n_boot=20, fit_boot=0, fit_on="all")
+    first = run_fidelity(str(toy_mat), jobs_in=tmp_path, **kw)
+    assert len(list((tmp_path / "jobs").glob("*.json"))) == 2 * 2  # default and fitted, two seeds each
+    calls = []
+    monkeypatch.setattr(fjobs, "seed_run", lambda p, i: calls.append(p) or {})
+    again = run_fidelity(str(toy_mat), jobs_in=tmp_path, **kw)
+    assert calls == [] and again.primary.ahed == first.primary.ahed and again.primary.score == first.primary.score

@@ -21,7 +21,7 @@ def register(app: typer.Typer) -> None:
 
         Simulates a built-in scenario twice — exact ray casting with range noise and dissipation as the
         stand-in for reality, the thesis's depth-buffer lidar as the simulator — tracks both with both
-        thesis tunings, compares them (AHED, COVDIFF) and writes the HTML report.
+        thesis tunings, compares them (AHED, COVDIFF, the fidelity score) and writes the HTML report.
         """
         from seatwin.pipeline.demo import run_demo
 
@@ -30,7 +30,15 @@ def register(app: typer.Typer) -> None:
         )
         for ln in result.comparison.table["targets"]:
             ahed = "undefined" if ln["ahed"] is None else f"{ln['ahed']:.3f}"
-            typer.echo(f"  {ln['target']:<12} tuning {ln['tuning']:<10} AHED {ahed}  (common instants {ln['n_common']})")
+            score = "undefined" if ln["score"] is None else f"{ln['score']:.3f}"
+            typer.echo(
+                f"  {ln['target']:<12} tuning {ln['tuning']:<10} AHED {ahed}  fidelity score {score}  "
+                f"(common instants {ln['n_common']})"
+            )
+        for tuning, sc in result.comparison.table["score_by_tuning"].items():
+            o = sc and sc["score"]
+            if o and o["value"] is not None:
+                typer.echo(f"  overall fidelity score, tuning {tuning}: {o['value']:.3f} [{o['ci_low']:.3f}, {o['ci_high']:.3f}]")
         typer.echo("")
         typer.echo(f"scenario plots:  {result.figures}/")
         typer.echo(f"recordings:      {result.reality}  {result.simulator}  (open with Foxglove, or `seatwin bag info`)")

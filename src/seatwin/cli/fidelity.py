@@ -60,13 +60,22 @@ def register(app: typer.Typer) -> None:
             "heavy_clutter, too_clean (needs --fit-on).",
         ),
         html: bool = typer.Option(True, "--html/--no-html", help="Also write the HTML report (index.html)."),
+        workers: int = typer.Option(
+            0,
+            "--workers",
+            metavar="N",
+            min=0,
+            help="0 (default): simulate the seeds in this process; N: on a local Ray instance of N CPUs (same results).",
+        ),
+        address: str | None = typer.Option(
+            None, "--address", metavar="RAY_ADDRESS", help="Simulate the seeds on this Ray cluster (e.g. ray://head:10001)."
+        ),
         progress: bool = typer.Option(
             True, "--progress/--no-progress", help="Progress bar (a line every 10 s when not a terminal)."
         ),
     ) -> None:
         from seatwin.cli.output import progress_counter, split_list
         from seatwin.fidelity import FidelityOptions, run_fidelity, write_fidelity
-        from seatwin.fidelity.ablations import ABLATIONS
         from seatwin.settings import validated
 
         opts = validated(
@@ -85,17 +94,8 @@ def register(app: typer.Typer) -> None:
                 "ablations": ablations,
             },
         )
-        n_models = 1 + (opts.fit_on != "none") + (len(ABLATIONS) if opts.ablations else 0)
-        n_steps = opts.seeds * n_models
         with progress_counter("fidelity (seeds × models)", progress, min_total=1) as advance:
-            done = 0
-
-            def step(_what: str) -> None:
-                nonlocal done
-                done += 1
-                advance(done, n_steps)
-
-            result = run_fidelity(str(mat), opts, step=step)
+            result = run_fidelity(str(mat), opts, jobs_in=out, workers=workers, address=address, progress=advance)
         paths = write_fidelity(out, result, html=html)
 
         def num(x: float | None) -> str:

@@ -21,6 +21,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -34,7 +35,6 @@ from seatwin.fidelity.joyride import (
     antenna_positions,
     observations,
     replica_scene,
-    simulate_replica,
     untruthed_vessels,
 )
 from seatwin.fidelity.options import FidelityOptions
@@ -48,7 +48,6 @@ if TYPE_CHECKING:
     from seatwin.perception.measurements import Scan
     from seatwin.sensors.radar.config import RadarConfig
     from seatwin.tracking import TrackerConfig
-    from seatwin.world.scene import Scene
 
 
 RADAR_CLUTTER_GATE_M = 60.0
@@ -262,43 +261,31 @@ def evaluate_model(
     opts: FidelityOptions,
     window: tuple[float, float],
     real_tracks: dict[str, Tracks],
-    tuning: TrackerConfig,
-    scene: Scene | None = None,
+    seeds: list[tuple[int, list[NDArray[np.float64]], dict[str, Tracks]]],
     label: str = "",
-    step: Callable[[str], None] | None = None,
 ) -> ModelResult:
-    """Simulate ``opts.seeds`` synthetic recordings with radar ``config``; AHED per agent in ``window``.
-
-    ``step(description)`` is called after each seed (for progress)."""
+    """AHED and the score per agent in ``window`` of radar ``config``'s synthetic recordings: ``seeds`` holds,
+    per seed in order, its plots per scan and its tracks per agent (:mod:`seatwin.fidelity.jobs`)."""
     from seatwin.evaluation import CompareOptions, compare
-    from seatwin.sensors.radar.model import RadarModel
 
-    scene = scene or replica_scene(data)
     truth = truth_of(data)
     idx_w = np.flatnonzero(in_window(data.time, window))
     runs: dict[str, list[WindowStats]] = {a: [] for a in opts.agents}
     synth_tracks: dict[str, list[Tracks]] = {a: [] for a in opts.agents}
     off_target: dict[str, list[OffTarget]] = {a: [] for a in opts.agents}
     result = ModelResult(label, config.model_dump(mode="json", exclude={"fit"}), {}, [])
-    for s in range(opts.seeds):
-        seed = opts.seed0 + s
-        scans = simulate_replica(data, RadarModel(config, seed=seed), scene)
-        plots = [sc.positions for sc in scans]
-        antenna = np.array([[sc.antenna.north, sc.antenna.east] for sc in scans])
+    for s, (seed, plots, tracks) in enumerate(seeds):
         if result.example_plots is None:
             result.example_plots = plots
         result.synthetic_statistics.append(plot_statistics(data, plots, idx_w))
-        tscans = tracker_scans(data.time, plots, antenna)
         for agent in opts.agents:
-            tr = run_agent(tscans, tuning, agent)
+            tr = tracks[agent]
             synth_tracks[agent].append(tr)
             comp = compare(real_tracks[agent], tr, truth, opts.tuning, CompareOptions())
             if s == 0:
                 result.comparisons[agent] = comp
             off_target[agent].append(off_target_tracks(tr, data, window))
             runs[agent].append(window_stats(comp.series[TARGET], window, seed))
-        if step is not None:
-            step(f"model {label}, seed {seed}")
     for agent in opts.agents:
         floor = floor_stats(synth_tracks[agent], opts.seed0, truth, window, opts.tuning)
         score = window_score(real_tracks[agent], synth_tracks[agent], truth, window, score_options(opts))
@@ -308,6 +295,49 @@ def evaluate_model(
     return result
 
 
+def _run_seeds(
+    path: str,
+    models: dict[str, RadarConfig],
+    opts: FidelityOptions,
+    tuning: TrackerConfig,
+    extra: dict[str, NDArray[np.float64]],
+    jobs_in: str | Path | None,
+    workers: int,
+    address: str | None,
+    progress: Callable[[int, int], None] | None,
+) -> dict[str, list[tuple[int, list[NDArray[np.float64]], dict[str, Tracks]]]]:
+    """Every (model, seed) job run by the campaign engine; per model, per seed: (seed, plots, tracks per agent)."""
+    import tempfile
+
+    from seatwin.campaign.engine import run_jobs
+    from seatwin.errors import InputError
+    from seatwin.fidelity.jobs import seed_job, seed_outputs, seed_run
+
+    jobs = {
+        (label, seed): seed_job(path, label, cfg, seed, tuning, opts.agents, extra)
+        for label, cfg in models.items()
+        for seed in range(opts.seed0, opts.seed0 + opts.seeds)
+    }
+    in_process = workers == 0 and address is None
+    with tempfile.TemporaryDirectory(prefix="seatwin-fidelity-") as tmp:
+        report = run_jobs(
+            list(jobs.values()),
+            seed_run,
+            jobs_in if jobs_in is not None else tmp,
+            engine="sequential" if in_process else "ray",
+            workers=0 if in_process else (workers or None),
+            address=address,
+            progress=progress,
+        )
+    failed = [r for r in report.records.values() if not r.ok]
+    if failed:
+        raise InputError(path, f"{len(failed)} of {len(jobs)} synthetic runs failed; the first: {failed[0].error}")
+    out: dict[str, list[tuple[int, list[NDArray[np.float64]], dict[str, Tracks]]]] = {label: [] for label in models}
+    for (label, seed), job in jobs.items():
+        out[label].append((seed, *seed_outputs(report.records[job.id].result)))
+    return out
+
+
 def _nanmean(parts: list[NDArray[np.float64]]) -> float | None:
     x = np.concatenate(parts) if parts else np.empty(0)
     x = x[np.isfinite(x)]
@@ -315,11 +345,21 @@ def _nanmean(parts: list[NDArray[np.float64]]) -> float | None:
 
 
 def run_fidelity(
-    path: str, options: FidelityOptions | None = None, *, step: Callable[[str], None] | None = None, **changes: object
+    path: str,
+    options: FidelityOptions | None = None,
+    *,
+    jobs_in: str | Path | None = None,
+    workers: int = 0,
+    address: str | None = None,
+    progress: Callable[[int, int], None] | None = None,
+    **changes: object,
 ) -> FidelityResult:
     """The whole method on ``joyride.mat`` with ``options`` (default :class:`FidelityOptions`, with field ``changes``).
 
-    ``step(description)`` is called after each simulated seed of each model (for progress)."""
+    Every (model, seed) is a job of the campaign engine (:mod:`seatwin.fidelity.jobs`): in this process
+    (``workers=0``), on a local Ray instance of ``workers`` CPUs or on the cluster at ``address``, with the
+    same results; outcomes are kept in ``jobs_in/jobs`` (a re-run resumes; default: a temporary folder).
+    ``progress(done, total)`` is called as jobs finish."""
     from seatwin.fidelity.joyride import load_joyride
     from seatwin.sensors.radar.config import RadarConfig, load_radar_config
     from seatwin.sensors.radar.fit import fit_radar
@@ -355,8 +395,8 @@ def run_fidelity(
     real_scans = tracker_scans(data.time, data.plots, antenna)
     real_tracks = {a: run_agent(real_scans, tuning, a) for a in opts.agents}
     extra = untruthed_vessels(real_tracks[opts.agents[0]], data, RADAR_CLUTTER_GATE_M) if opts.untruthed_vessels else {}
-    sim_scene = replica_scene(data, extra=extra) if extra else scene
     idx_w = np.flatnonzero(in_window(data.time, window))
+    seeds = _run_seeds(path, models, opts, tuning, extra, jobs_in, workers, address, progress)
     return FidelityResult(
         dataset=str(path),
         n_scans=n,
@@ -379,8 +419,7 @@ def run_fidelity(
         },
         radar_fit=fit_report,
         models={
-            label: evaluate_model(data, cfg, opts, window, real_tracks, tuning, sim_scene, label, step)
-            for label, cfg in models.items()
+            label: evaluate_model(data, cfg, opts, window, real_tracks, seeds[label], label) for label, cfg in models.items()
         },
         primary_model="fitted" if "fitted" in models else "default",
         primary_agent=opts.agents[0],
