@@ -19,6 +19,7 @@ if TYPE_CHECKING:
     from seatwin.campaign.engine import Job
     from seatwin.evaluation import Tracks
     from seatwin.fidelity.joyride import JoyrideData
+    from seatwin.perception.measurements import Scan
     from seatwin.sensors.radar.config import RadarConfig
     from seatwin.tracking import TrackerConfig
 
@@ -52,6 +53,21 @@ def seed_job(
     )
 
 
+def tracker_scans(time: NDArray[np.float64], plots: list[NDArray[np.float64]], antenna: NDArray[np.float64]) -> list[Scan]:
+    """Range–bearing radar scans for the tracker (world frame, about the antenna; no land mask, no
+    merging: the joyride recording's own hint), through :func:`seatwin.perception.radar.radar_scan`."""
+    from seatwin.perception.radar import radar_scan
+
+    return [radar_scan(p, float(t), float(a[0]), float(a[1])) for t, p, a in zip(time, plots, antenna)]
+
+
+def run_agent(scans: list[Scan], tuning: TrackerConfig, agent: str) -> Tracks:
+    """Agent ``jipda`` or ``gnn`` over ``scans`` (:func:`seatwin.pipeline.track_scans`)."""
+    from seatwin.pipeline import track_scans
+
+    return track_scans(scans, tuning, agent=agent)
+
+
 @lru_cache(maxsize=4)
 def _dataset(path: str) -> JoyrideData:
     from seatwin.fidelity.joyride import load_joyride
@@ -63,7 +79,6 @@ def seed_run(params: dict[str, Any], inputs: dict[str, Any]) -> dict[str, Any]:
     """The engine's job function (:data:`seatwin.campaign.engine.JobFn`) of a :func:`seed_job`."""
     from seatwin.campaign.job import tracks_to_json
     from seatwin.fidelity.joyride import replica_scene, simulate_replica
-    from seatwin.fidelity.method import run_agent, tracker_scans
     from seatwin.sensors.radar.config import RadarConfig
     from seatwin.sensors.radar.model import RadarModel
     from seatwin.tracking import TrackerConfig

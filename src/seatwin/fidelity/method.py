@@ -28,6 +28,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seatwin.fidelity.ablations import ablated_models
+from seatwin.fidelity.jobs import run_agent, tracker_scans
 from seatwin.fidelity.joyride import (
     TARGET,
     TARGET_SIZE,
@@ -45,7 +46,6 @@ if TYPE_CHECKING:
     from seatwin.evaluation import Evaluation, Tracks, TruthSet
     from seatwin.evaluation.compare import CompareOptions, ComparisonSeries
     from seatwin.evaluation.score import FidelityScore, ScoreOptions
-    from seatwin.perception.measurements import Scan
     from seatwin.sensors.radar.config import RadarConfig
     from seatwin.tracking import TrackerConfig
 
@@ -54,21 +54,6 @@ RADAR_CLUTTER_GATE_M = 60.0
 """Plots and confirmed tracks farther than this from the target are clutter and off-target tracks: the
 radar's plots scatter tens of metres about the target, and a model's own scattered target plots must
 not count as clutter (plot statistics, off-target tracks and the score's plot terms alike)."""
-
-
-def tracker_scans(time: NDArray[np.float64], plots: list[NDArray[np.float64]], antenna: NDArray[np.float64]) -> list[Scan]:
-    """Range–bearing radar scans for the tracker (world frame, about the antenna; no land mask, no
-    merging: the joyride recording's own hint), through :func:`seatwin.perception.radar.radar_scan`."""
-    from seatwin.perception.radar import radar_scan
-
-    return [radar_scan(p, float(t), float(a[0]), float(a[1])) for t, p, a in zip(time, plots, antenna)]
-
-
-def run_agent(scans: list[Scan], tuning: TrackerConfig, agent: str) -> Tracks:
-    """Agent ``jipda`` or ``gnn`` over ``scans`` (:func:`seatwin.pipeline.track_scans`)."""
-    from seatwin.pipeline import track_scans
-
-    return track_scans(scans, tuning, agent=agent)
 
 
 def truth_of(data: JoyrideData) -> TruthSet:
