@@ -83,7 +83,7 @@ def register(app: typer.Typer) -> None:
         seeds: int = typer.Option(
             3, "--seeds", metavar="N", min=1, help="Repeat every point with seeds 1…N and show the spread."
         ),
-        duration: float = typer.Option(30.0, "--duration", metavar="S", help="Simulated seconds per run."),
+        duration: float = typer.Option(60.0, "--duration", metavar="S", help="Simulated seconds per run."),
         reference_seed_offset: int = typer.Option(
             1000,
             "--reference-seed-offset",

@@ -28,7 +28,9 @@ class SweepSettings(Settings):
         "allows, cleaner than it (default: the kind's default strengths).",
     )
     seeds: Seeds = Field((1, 2, 3), min_length=1, description="Distinct seeds: every point is repeated with each.")
-    duration: float = Field(30.0, gt=0, description="Simulated seconds per run.")
+    duration: float = Field(
+        60.0, gt=0, description="Simulated seconds per run (the score's sampling floor shrinks with more instants)."
+    )
     offset: float | None = Field(
         None,
         ge=0,
