@@ -107,14 +107,44 @@ def camera_info(rec: Any, topic: str) -> tuple[NDArray[np.float64], tuple[float,
     return k, (d if any(d) else None)
 
 
-def _labels(arr: Any) -> list[tuple[str, float, float, float, float, float]]:
-    """``(instance, cx, cy, w, h, visible_fraction)`` of a ``Detection2DArray``."""
+@dataclass(frozen=True)
+class LabelBox:
+    """One ground-truth box of a labels topic: pixel centre and size (pixel centres at integers),
+    the vessel's visible fraction and truncation at the image edge."""
+
+    instance: str
+    cx: float
+    cy: float
+    w: float
+    h: float
+    visible: float
+    truncation: float
+
+
+def label_boxes(arr: Any) -> list[LabelBox]:
+    """The boxes of a ``vision_msgs/Detection2DArray`` of the labels topic (``results``: ``vessel`` =
+    visible fraction, ``truncation``)."""
     boxes = []
     for d in arr.detections:
         scores = {r.hypothesis.class_id: float(r.hypothesis.score) for r in d.results}
         b = d.bbox
-        boxes.append((d.id, b.center.position.x, b.center.position.y, b.size_x, b.size_y, scores.get("vessel", 1.0)))
+        boxes.append(
+            LabelBox(
+                d.id,
+                float(b.center.position.x),
+                float(b.center.position.y),
+                float(b.size_x),
+                float(b.size_y),
+                scores.get("vessel", 1.0),
+                scores.get("truncation", 0.0),
+            )
+        )
     return boxes
+
+
+def _labels(arr: Any) -> list[tuple[str, float, float, float, float, float]]:
+    """``(instance, cx, cy, w, h, visible_fraction)`` of a ``Detection2DArray`` (the label detector's input)."""
+    return [(b.instance, b.cx, b.cy, b.w, b.h, b.visible) for b in label_boxes(arr)]
 
 
 def _bgr(msg: Any, topic: str) -> NDArray[np.uint8]:

@@ -51,6 +51,7 @@ def export_coco(run: str | Path, out: str | Path, min_visible_fraction: float = 
     Labels whose ``visible_fraction`` is at most ``min_visible_fraction`` are left out (default:
     only vessels hidden completely).
     """
+    from seatwin.perception.camera_frames import label_boxes
     from seatwin.recording import open_bag
     from seatwin.recording.images import image_to_array
 
@@ -87,15 +88,12 @@ def export_coco(run: str | Path, out: str | Path, min_visible_fraction: float = 
                 }
             )
             arr = labels.get((_labels_topic(m.topic), stamp))
-            for det in arr.detections if arr is not None else ():
-                scores = {r.hypothesis.class_id: float(r.hypothesis.score) for r in det.results}
-                visible = scores.get("vessel", 1.0)
-                if visible <= min_visible_fraction:
+            for box in label_boxes(arr) if arr is not None else ():
+                if box.visible <= min_visible_fraction:
                     continue
-                cx, cy = float(det.bbox.center.position.x), float(det.bbox.center.position.y)
-                w, h = float(det.bbox.size_x), float(det.bbox.size_y)
+                w, h = box.w, box.h
                 # continuous pixel coordinates (pixel centres at integers) → COCO (pixel edges at integers)
-                x0, y0 = cx - w / 2 + 0.5, cy - h / 2 + 0.5
+                x0, y0 = box.cx - w / 2 + 0.5, box.cy - h / 2 + 0.5
                 annotations.append(
                     {
                         "id": len(annotations) + 1,
@@ -105,9 +103,9 @@ def export_coco(run: str | Path, out: str | Path, min_visible_fraction: float = 
                         "area": round(w * h, 3),
                         "iscrowd": 0,
                         "attributes": {
-                            "instance": det.id,
-                            "visible_fraction": visible,
-                            "truncation": scores.get("truncation", 0.0),
+                            "instance": box.instance,
+                            "visible_fraction": box.visible,
+                            "truncation": box.truncation,
                         },
                     }
                 )
