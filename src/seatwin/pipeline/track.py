@@ -136,7 +136,7 @@ def map_hint(manifest: dict[str, Any] | None, run_dir: Path | None) -> str | Non
     if value is None:
         return None
     text = str(value)
-    if text in ("harbour", "none"):
+    if text in ("harbour", "none", "ravnkloa"):  # names (load_mask resolves ravnkloa's raster)
         return text
     p = Path(text)
     return str(p if p.is_absolute() or run_dir is None else run_dir / p)

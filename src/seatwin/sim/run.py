@@ -89,12 +89,13 @@ def run_harbour(scenario: Scenario, settings: SimulationSettings) -> str:
 
 def water_mask_hint(scenario: Scenario, settings: SimulationSettings) -> str:
     """The water mask ``seatwin track`` should use on this run: the harbour it was simulated in
-    (``harbour``: the built-in layout, ``none``, or a raster's absolute path — ``ravnkloa`` resolved)."""
+    (``harbour``: the built-in layout, ``none``, ``ravnkloa`` by name — resolved wherever the run is
+    tracked, so the run stays portable — or a raster's absolute path)."""
     from seatwin.layout import harbour_file
 
     harbour = run_harbour(scenario, settings)
-    if harbour in ("default", "none"):
-        return "harbour" if harbour == "default" else "none"
+    if harbour in ("default", "none", "ravnkloa"):
+        return "harbour" if harbour == "default" else harbour
     return str(harbour_file(harbour).resolve())  # type: ignore[union-attr]
 
 
