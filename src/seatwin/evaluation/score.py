@@ -36,7 +36,7 @@ Intervals are bias-shifted (see :func:`_with_ci`).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
@@ -69,22 +69,24 @@ class ScoreOptions:
     (vessels are up to ~30 m long; a radar's plots scatter further: the joyride method uses 60 m)."""
 
 
+def in_window(times: ArrayLike, window: tuple[float, float] | None) -> NDArray[np.bool_]:
+    """Which ``times`` (POSIX) lie in ``window`` (inclusive, 1 ns slack); all of them when ``window`` is None."""
+    t = np.asarray(times, float)
+    if window is None:
+        return np.ones(t.shape, bool)
+    return (t >= window[0] - 1e-9) & (t <= window[1] + 1e-9)
+
+
 @dataclass(frozen=True)
 class TargetErrors:
     """One run's view of one target: position error [m] (north, east) per truth-defined instant, NaN without a track."""
 
     error: NDArray[np.float64]
 
-    @property
-    def has_track(self) -> NDArray[np.bool_]:
-        return np.isfinite(self.error[:, 0])
-
     @classmethod
     def from_series(cls, series: TargetSeries, window: tuple[float, float] | None = None) -> TargetErrors:
         """The errors of an evaluated target (:class:`TargetSeries`), optionally within ``window`` (POSIX, inclusive)."""
-        keep = np.isfinite(series.truth[:, 0])
-        if window is not None:
-            keep &= (series.time >= window[0] - 1e-9) & (series.time <= window[1] + 1e-9)
+        keep = np.isfinite(series.truth[:, 0]) & in_window(series.time, window)
         e = series.state[:, [0, 2]] - series.truth[:, [0, 2]]
         e[~series.valid] = np.nan
         return cls(e[keep])
@@ -158,6 +160,12 @@ def _with_ci(value: float, replicates: NDArray[np.float64], level: float, **coun
     return ScoreValue(value, min(lo, value), max(hi, value), None, dict(counts), replicates)
 
 
+def _replicates(o: ScoreOptions, stream: str, replicate: Callable[[np.random.Generator], float]) -> NDArray[np.float64]:
+    """``o.n_boot`` bootstrap replicates, each ``replicate(rng)``, drawn from the stream ``stream`` under ``o.seed``."""
+    rng = frame_rng(o.seed, stream, 0)
+    return np.array([replicate(rng) for _ in range(o.n_boot)], dtype=float)
+
+
 def _pool(runs: Sequence[TargetErrors], idx: Sequence[NDArray[np.int64]] | None = None) -> tuple[NDArray[np.float64], int]:
     """Errors at the instants with a track, pooled over runs (resampled at ``idx`` per run), and the instant count."""
     parts = [r.error if idx is None else r.error[i] for r, i in zip(runs, idx or [None] * len(runs))]
@@ -194,12 +202,14 @@ def target_score(
     if min(len(er), len(es)) < o.n_min:
         return ScoreValue(1.0, 1.0, 1.0, None, counts | {"one_sided": True}, np.ones(o.n_boot))
     value = _target_value((er, nr), (es, ns))
-    rng = frame_rng(o.seed, f"score/target/{stream}", 0)
-    reps = np.empty(o.n_boot)
-    for b in range(o.n_boot):
-        ir = [circular_block_indices(len(r.error), o.block, rng) for r in real]
-        is_ = [circular_block_indices(len(s.error), o.block, rng) for s in synthetic]
-        reps[b] = _target_value(_pool(real, ir), _pool(synthetic, is_))
+    reps = _replicates(
+        o,
+        f"score/target/{stream}",
+        lambda rng: _target_value(
+            _pool(real, [circular_block_indices(len(r.error), o.block, rng) for r in real]),
+            _pool(synthetic, [circular_block_indices(len(s.error), o.block, rng) for s in synthetic]),
+        ),
+    )
     counts |= {"coverage_real": len(er) / nr, "coverage_synthetic": len(es) / ns}
     if min(len(er), len(es)) >= 2:
         counts["error_hellinger"] = error_hellinger(er, es)
@@ -208,42 +218,31 @@ def target_score(
 
 
 def rate_score(
-    real: Sequence[ArrayLike],
-    synthetic: Sequence[ArrayLike],
-    options: ScoreOptions | None = None,
-    stream: str = "",
-    unit: str = "scan",
+    real: Sequence[ArrayLike], synthetic: Sequence[ArrayLike], options: ScoreOptions | None = None, stream: str = ""
 ) -> ScoreValue:
-    """(S4) Poisson Hellinger distance of per-``unit`` counts (e.g. clutter plots per scan), one array per run
-    in time order; bootstrap: circular blocks of consecutive units within each run."""
+    """(S4) Poisson Hellinger distance of per-scan counts (e.g. clutter plots per scan), one array per run
+    in time order; bootstrap: circular blocks of consecutive scans within each run."""
     o = options or ScoreOptions()
     rr = [np.asarray(c, float) for c in real if len(c)]
     ss = [np.asarray(c, float) for c in synthetic if len(c)]
     n_r, n_s = sum(map(len, rr)), sum(map(len, ss))
     if n_r < o.n_min or n_s < o.n_min:
-        return _refused(f"fewer than {o.n_min} {unit}s ({n_r} real, {n_s} synthetic)", **{f"n_{unit}s_real": n_r})
+        return _refused(f"fewer than {o.n_min} scans ({n_r} real, {n_s} synthetic)", n_scans_real=n_r)
 
     def rate(parts: list[NDArray[np.float64]], idx: list[NDArray[np.int64]] | None = None) -> float:
         tot = sum(float(p.sum() if idx is None else p[i].sum()) for p, i in zip(parts, idx or [None] * len(parts)))
         return tot / sum(map(len, parts))
 
     lam_r, lam_s = rate(rr), rate(ss)
-    rng = frame_rng(o.seed, f"score/rate/{stream}", 0)
-    reps = np.array(
-        [
-            poisson_hellinger(
-                rate(rr, [circular_block_indices(len(p), o.block, rng) for p in rr]),
-                rate(ss, [circular_block_indices(len(p), o.block, rng) for p in ss]),
-            )
-            for _ in range(o.n_boot)
-        ]
+    reps = _replicates(
+        o,
+        f"score/rate/{stream}",
+        lambda rng: poisson_hellinger(
+            rate(rr, [circular_block_indices(len(p), o.block, rng) for p in rr]),
+            rate(ss, [circular_block_indices(len(p), o.block, rng) for p in ss]),
+        ),
     )
-    counts = {
-        f"rate_real_per_{unit}": lam_r,
-        f"rate_synthetic_per_{unit}": lam_s,
-        f"n_{unit}s_real": n_r,
-        f"n_{unit}s_synthetic": n_s,
-    }
+    counts = {"rate_real_per_scan": lam_r, "rate_synthetic_per_scan": lam_s, "n_scans_real": n_r, "n_scans_synthetic": n_s}
     return _with_ci(poisson_hellinger(lam_r, lam_s), reps, o.level, **counts)
 
 
@@ -267,17 +266,15 @@ def shape_score(
         return _refused("no cluster shapes (not a lidar)", **counts)
     if min(len(fr), len(fs)) < o.n_min:
         return _refused(f"fewer than {o.n_min} plots with a shape ({len(fr)} real, {len(fs)} synthetic)", **counts)
-    rng = frame_rng(o.seed, "score/shape", 0)
-    reps = np.empty(o.n_boot)
-    for b in range(o.n_boot):
+
+    def replicate(rng: np.random.Generator) -> float:
         br = pool(rr, [circular_block_indices(len(run), o.block, rng) for run in rr])
         bs = pool(ss, [circular_block_indices(len(run), o.block, rng) for run in ss])
-        reps[b] = error_hellinger(br, bs, 0.0) if min(len(br), len(bs)) >= 2 else np.nan
+        return error_hellinger(br, bs, 0.0) if min(len(br), len(bs)) >= 2 else np.nan
+
+    reps = _replicates(o, "score/shape", replicate)
     counts |= {"mean_real": fr.mean(axis=0).tolist(), "mean_synthetic": fs.mean(axis=0).tolist()}  # type: ignore[dict-item]
     return _with_ci(error_hellinger(fr, fs, 0.0), reps, o.level, **counts)
-
-
-PLOT_TERMS = ("clutter", "false_tracks", "shape")
 
 
 @dataclass
@@ -287,15 +284,7 @@ class FidelityScore:
     overall: ScoreValue
     targets: dict[str, ScoreValue]
     plots: dict[str, ScoreValue]
-    """Plot-level terms by name (:data:`PLOT_TERMS`)."""
-
-    @property
-    def clutter(self) -> ScoreValue:
-        return self.plots["clutter"]
-
-    @property
-    def false_tracks(self) -> ScoreValue:
-        return self.plots["false_tracks"]
+    """Plot-level terms by name: ``clutter``, ``false_tracks``, ``shape``."""
 
     def to_dict(self) -> dict:
         return {
@@ -330,9 +319,7 @@ def overall_score(
 
 
 def _plot_window(tr: Tracks, window: tuple[float, float] | None) -> NDArray[np.int64]:
-    t = tr.plots.times  # type: ignore[union-attr]
-    keep = np.ones(len(t), bool) if window is None else (t >= window[0] - 1e-9) & (t <= window[1] + 1e-9)
-    return np.flatnonzero(keep)
+    return np.flatnonzero(in_window(tr.plots.times, window))  # type: ignore[union-attr]
 
 
 def run_shapes(tracks: Sequence[Tracks], window: tuple[float, float] | None = None) -> list[list[NDArray[np.float64]]] | None:
@@ -363,14 +350,15 @@ def run_far_tracks(
     poor, beyond the evaluation's association gate, is not one)."""
     out = []
     for tr in tracks:
-        t = tr.scan_times
-        keep = np.ones(len(t), bool) if window is None else (t >= window[0] - 1e-9) & (t <= window[1] + 1e-9)
-        times = t[keep]
+        times = tr.scan_times[in_window(tr.scan_times, window)]
         conf = tr.confirmed
         at = np.searchsorted(tr.time[conf], times, side="left"), np.searchsorted(tr.time[conf], times, side="right")
         pos = tr.state[conf][:, [0, 2]]
         out.append(clutter_counts(times, [pos[a:b] for a, b in zip(*at)], truth, gate))
     return out
+
+
+NO_PLOTS = "no plots (track files carry none)"
 
 
 def score_runs(
@@ -382,64 +370,34 @@ def score_runs(
     options: ScoreOptions | None = None,
     window: tuple[float, float] | None = None,
 ) -> FidelityScore:
-    """The score of synthetic runs against real runs (each with its evaluation against ``truth``): every
-    term from the runs' tracks and plot logs (:func:`fidelity_score`), within ``window`` when given."""
+    """The score of synthetic runs (e.g. one per seed) against real runs, within ``window`` when given:
+    the target terms from the runs' evaluations against ``truth``, the plot terms from their tracks and
+    plot logs (:func:`run_clutter`, :func:`run_far_tracks`, :func:`run_shapes`; a run without a plot log,
+    e.g. read from a track file, leaves the clutter and shape terms refused)."""
     o = options or ScoreOptions()
-    return fidelity_score(
-        real_evaluations,
-        synthetic_evaluations,
-        clutter_real=run_clutter(real, truth, o.clutter_gate, window),
-        clutter_synthetic=run_clutter(synthetic, truth, o.clutter_gate, window),
-        false_real=run_far_tracks(real, truth, o.clutter_gate, window),
-        false_synthetic=run_far_tracks(synthetic, truth, o.clutter_gate, window),
-        shapes_real=run_shapes(real, window),
-        shapes_synthetic=run_shapes(synthetic, window),
-        window=window,
-        options=o,
-    )
-
-
-def fidelity_score(
-    real: Sequence[Evaluation],
-    synthetic: Sequence[Evaluation],
-    *,
-    clutter_real: Sequence[ArrayLike] | None = None,
-    clutter_synthetic: Sequence[ArrayLike] | None = None,
-    false_real: Sequence[ArrayLike] | None = None,
-    false_synthetic: Sequence[ArrayLike] | None = None,
-    shapes_real: Sequence[Sequence[ArrayLike]] | None = None,
-    shapes_synthetic: Sequence[Sequence[ArrayLike]] | None = None,
-    window: tuple[float, float] | None = None,
-    options: ScoreOptions | None = None,
-) -> FidelityScore:
-    """The score of synthetic runs (e.g. one per seed) against real runs, all evaluated against the same truth.
-
-    ``clutter_*``: per run, the clutter plots of each scan in time order (:func:`run_clutter`);
-    ``false_*``: per run, the false tracks at each scan (:func:`run_far_tracks`); ``shapes_*``: per run, the
-    plots' shape features per scan (:func:`run_shapes`); without them those terms are refused
-    (:func:`score_runs` computes them all from tracks)."""
-    o = options or ScoreOptions()
-    names = [s.target for s in real[0].summaries] if real else []
+    names = [s.target for s in real_evaluations[0].summaries] if real_evaluations else []
     targets = {
         name: target_score(
-            [TargetErrors.from_series(e.series[name], window) for e in real],
-            [TargetErrors.from_series(e.series[name], window) for e in synthetic],
+            [TargetErrors.from_series(e.series[name], window) for e in real_evaluations],
+            [TargetErrors.from_series(e.series[name], window) for e in synthetic_evaluations],
             o,
             stream=name,
         )
         for name in names
     }
-    no_plots = "no plots (track files carry none)"
+    clutter_r, clutter_s = run_clutter(real, truth, o.clutter_gate, window), run_clutter(synthetic, truth, o.clutter_gate, window)
+    shapes_r, shapes_s = run_shapes(real, window), run_shapes(synthetic, window)
     plots = {
-        "clutter": _refused(no_plots)
-        if clutter_real is None or clutter_synthetic is None
-        else rate_score(clutter_real, clutter_synthetic, o, stream="clutter"),
-        "false_tracks": _refused("no tracks given")
-        if false_real is None or false_synthetic is None
-        else rate_score(false_real, false_synthetic, o, stream="false_tracks"),
-        "shape": _refused(no_plots)
-        if shapes_real is None or shapes_synthetic is None
-        else shape_score(shapes_real, shapes_synthetic, o),
+        "clutter": _refused(NO_PLOTS)
+        if clutter_r is None or clutter_s is None
+        else rate_score(clutter_r, clutter_s, o, stream="clutter"),
+        "false_tracks": rate_score(
+            run_far_tracks(real, truth, o.clutter_gate, window),
+            run_far_tracks(synthetic, truth, o.clutter_gate, window),
+            o,
+            stream="false_tracks",
+        ),
+        "shape": _refused(NO_PLOTS) if shapes_r is None or shapes_s is None else shape_score(shapes_r, shapes_s, o),
     }
     return FidelityScore(overall_score(targets, plots, o), targets, plots)
 

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
+from seatwin.evaluation.score import in_window
 from seatwin.fidelity.ablations import ablated_models
 from seatwin.fidelity.jobs import run_agent, tracker_scans
 from seatwin.fidelity.joyride import (
@@ -84,11 +85,6 @@ def block_bootstrap_ci(
             cnt += len(v)
         means[b] = tot / cnt
     return percentile_interval(means, level)  # type: ignore[return-value]
-
-
-def in_window(times: NDArray[np.float64], window: tuple[float, float]) -> NDArray[np.bool_]:
-    """Which ``times`` lie in ``window`` (POSIX, inclusive, to 1 ns)."""
-    return (times >= window[0] - 1e-9) & (times <= window[1] + 1e-9)
 
 
 def window_stats(series: ComparisonSeries, window: tuple[float, float], seed: int) -> WindowStats:
@@ -181,7 +177,7 @@ def score_options(opts: FidelityOptions) -> ScoreOptions:
 def window_score(
     real: Tracks, synthetic: list[Tracks], truth: TruthSet, window: tuple[float, float], options: ScoreOptions
 ) -> FidelityScore:
-    """The unpaired fidelity score (:func:`seatwin.evaluation.score.fidelity_score`) of the synthetic runs
+    """The unpaired fidelity score (:func:`seatwin.evaluation.score.score_runs`) of the synthetic runs
     (all seeds pooled) against the real run, on ``window``: target errors and coverage, clutter plots per
     scan and plot shapes (from the runs' plot logs; radar plots carry no shape) and false tracks, all
     inside the window."""
