@@ -48,8 +48,9 @@ class CompareOptions:
     form: HellingerForm = "standard"
     both_missing: BothMissing = "skip"
     confidence: float = 0.95
-    score: ScoreOptions = field(default_factory=ScoreOptions)
-    """Conventions of the unpaired fidelity score (:mod:`seatwin.evaluation.score`)."""
+    score: ScoreOptions | None = field(default_factory=ScoreOptions)
+    """Conventions of the unpaired fidelity score (:mod:`seatwin.evaluation.score`); None: not computed
+    (its bootstrap is most of a comparison's cost, wasted where only HED/AHED are used)."""
 
     def __post_init__(self) -> None:
         if self.form not in FORMS:
@@ -278,11 +279,13 @@ def compare(
     ev_r = evaluate(real, truth, options.gate, options.confirmed_only, options.confidence, mask)
     ev_s = evaluate(synthetic, truth, options.gate, options.confirmed_only, options.confidence, mask)
     result = Comparison(tuning, options, ev_r, ev_s)
-    result.score = score_runs([real], [synthetic], truth, [ev_r], [ev_s], options.score)
+    if options.score is not None:
+        result.score = score_runs([real], [synthetic], truth, [ev_r], [ev_s], options.score)
     for name in truth.names:
         series, line = compare_target(ev_r, ev_s, truth, name, tuning, options)
-        s = result.score.targets[name]
-        line.score, line.score_ci_low, line.score_ci_high, line.score_reason = s.value, s.ci_low, s.ci_high, s.reason
+        if result.score is not None:
+            s = result.score.targets[name]
+            line.score, line.score_ci_low, line.score_ci_high, line.score_reason = s.value, s.ci_low, s.ci_high, s.reason
         result.series[name] = series
         result.targets.append(line)
     return result
