@@ -9,6 +9,7 @@ detector reads (labels for ``label``, images for ``onnx``), under a tuning with 
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -99,13 +100,14 @@ def camera_comparison(
     if not usable:
         return None
     skipped = sorted({why for why in problems.values() if why is not None})
+    ahed_only = dataclasses.replace(options, score=None)  # the block reports AHED; the score's bootstrap would be thrown away
     fusion = []
     for r, s, tuning, label in usable:
         if not (tuning_has_camera(r, tuning) and tuning_has_camera(s, tuning)):
             skipped.append(f"tuning {tuning or 'of the recording'} has no camera entry (R_c): {r} / {s} not fused")
             continue
-        lidar = compare(run_of(r, tuning, "real", LIDAR), run_of(s, tuning, "synthetic", LIDAR), truth, label, options, mask)
-        fused = compare(run_of(r, tuning, "real", FUSED), run_of(s, tuning, "synthetic", FUSED), truth, label, options, mask)
+        lidar = compare(run_of(r, tuning, "real", LIDAR), run_of(s, tuning, "synthetic", LIDAR), truth, label, ahed_only, mask)
+        fused = compare(run_of(r, tuning, "real", FUSED), run_of(s, tuning, "synthetic", FUSED), truth, label, ahed_only, mask)
         fusion.append((label, lidar, fused))
     boxes = []
     for r, s in dict.fromkeys((r, s) for r, s, _, _ in usable):

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 from seatwin.errors import InputError, ParameterError
 from seatwin.pipeline.evaluate import check_overlap, recording_mask
-from seatwin.pipeline.track import track_recording
+from seatwin.pipeline.track import default_sensors, track_recording
 
 if TYPE_CHECKING:
     from seatwin.evaluation import CompareOptions, Comparison, Tracks, TruthSet
@@ -27,13 +27,11 @@ def is_track_file(spec: str | Path) -> bool:
     return Path(spec).suffix.lower() in TRACK_FILE_SUFFIXES
 
 
-def load_run(spec: str | Path, tuning: str | None = None, keep_as: Path | None = None, **track: Any) -> Tracks:
-    """A track file as it is, or a recording tracked with ``tuning`` (its own default when None).
-
-    ``keep_as``: also write the tracks of a recording to this track file; ``track``: further
-    :class:`~seatwin.pipeline.track.TrackOptions` fields (``sensors``, ``detector``…).
+def load_run(spec: str | Path, tuning: str | None = None, **track: Any) -> Tracks:
+    """A track file as it is, or a recording tracked with ``tuning`` (its own default when None);
+    ``track``: further :class:`~seatwin.pipeline.track.TrackOptions` fields (``sensors``, ``detector``…).
     """
-    from seatwin.evaluation import read_tracks, write_tracks
+    from seatwin.evaluation import read_tracks
 
     path = Path(spec)
     if is_track_file(path):
@@ -42,10 +40,18 @@ def load_run(spec: str | Path, tuning: str | None = None, keep_as: Path | None =
         raise InputError(path, "no such track file (.csv) or recording")
     tracks = track_recording(path, tuning=tuning, **track).tracks
     tracks.source = f"{path} (tracked, tuning {tuning or 'the recording default'})"
-    if keep_as is not None:
-        keep_as.parent.mkdir(parents=True, exist_ok=True)
-        write_tracks(keep_as, tracks)
     return tracks
+
+
+def default_sensors_of(spec: str | Path) -> tuple[str, ...]:
+    """The sensors a recording is tracked with by default (:func:`~seatwin.pipeline.track.default_sensors`);
+    () for a track file."""
+    from seatwin.recording import open_bag
+
+    if is_track_file(spec) or not Path(spec).exists():
+        return ()
+    with open_bag(Path(spec)) as rec:
+        return default_sensors(rec)
 
 
 def comparison_pairs(
@@ -165,7 +171,7 @@ def compare_runs(
     ``detector`` (``label``, or ``onnx`` with ``model``) and their boxes (matched at IoU ≥ ``box_min_iou``, default
     :data:`~seatwin.evaluation.boxes.DEFAULT_MIN_IOU`).
     """
-    from seatwin.evaluation import CompareOptions, compare, comparison_table, load_truth
+    from seatwin.evaluation import CompareOptions, compare, comparison_table, load_truth, write_tracks
     from seatwin.evaluation.boxes import DEFAULT_MIN_IOU
     from seatwin.perception.camera_frames import camera_detector
 
@@ -183,21 +189,27 @@ def compare_runs(
     truth_set = load_truth(truth)
     mask = recording_mask(truth)
     cache: dict[tuple[str, str | None, tuple[str, ...]], Tracks] = {}
+    written: set[tuple[str, str | None, tuple[str, ...]]] = set()
     kept: list[Path] = []
 
     def run_of(spec: str, tuning: str | None, side: str, sensors: tuple[str, ...] = ()) -> Tracks:
-        """Tracks of ``spec`` (a recording used twice is tracked once per tuning and sensors; () its default sensors)."""
-        if (spec, tuning, sensors) not in cache:
-            keep = None
-            if keep_tracks is not None and not is_track_file(spec):
-                suffix = "".join(f"_{s}" for s in sensors)
-                keep = Path(keep_tracks) / f"{side}_{Path(spec).stem}_{tuning or 'default'}{suffix}.csv"
-                kept.append(keep)
+        """Tracks of ``spec``: a recording is tracked once per tuning and sensors (() its default sensors, so
+        that asking for them by name — lidar alone beside lidar + camera — reuses the same tracks); with
+        ``keep_tracks``, each (recording, tuning, sensors asked for) is written once, named by the side asking first."""
+        key = (spec, tuning, sensors or default_sensors_of(spec))
+        if key not in cache:
             track: dict[str, Any] = {"sensors": sensors} if sensors else {}
             if "camera" in sensors and camera_cfg is not None:
                 track.update(detector=detector, model=model)
-            cache[(spec, tuning, sensors)] = load_run(spec, tuning, keep, **track)
-        return cache[(spec, tuning, sensors)]
+            cache[key] = load_run(spec, tuning, **track)
+        if keep_tracks is not None and not is_track_file(spec) and (spec, tuning, sensors) not in written:
+            written.add((spec, tuning, sensors))
+            suffix = "".join(f"_{s}" for s in sensors)
+            keep = Path(keep_tracks) / f"{side}_{Path(spec).stem}_{tuning or 'default'}{suffix}.csv"
+            keep.parent.mkdir(parents=True, exist_ok=True)
+            write_tracks(keep, cache[key])
+            kept.append(keep)
+        return cache[key]
 
     comparisons = []
     for r, s, t, label in pairs:

@@ -152,6 +152,17 @@ def vessel_truth(rec: Any) -> dict[str, Any] | None:
         return None
 
 
+def default_sensors(rec: Any) -> tuple[str, ...]:
+    """The sensors :func:`track_recording` uses when none are named: the radar and lidar topics an open
+    recording has (both when it has neither, so that the error names what is missing)."""
+    present = []
+    if rec.radar_topics():
+        present.append("radar")
+    if len(rec.topics_of_type("sensor_msgs/msg/PointCloud2")) > len(rec.radar_topics()):
+        present.append("lidar")
+    return tuple(present) or ("lidar", "radar")
+
+
 def track_recording(
     recording: str | Path,
     options: TrackOptions | None = None,
@@ -188,14 +199,7 @@ def track_recording(
         mask = load_mask(options.map_spec if options.map_spec is not None else map_hint(rec.manifest, rec.run_dir))
         merge = options.merge_distance if options.merge_distance is not None else float(hints.get("radar_merge", 0.0))
         radar = RadarPlots(merge_distance=merge, kind=MeasurementKind(options.radar_kind))
-        wanted = options.sensors
-        if wanted is None:
-            present = []
-            if rec.radar_topics():
-                present.append("radar")
-            if len(rec.topics_of_type("sensor_msgs/msg/PointCloud2")) > len(rec.radar_topics()):
-                present.append("lidar")
-            wanted = tuple(present) or ("lidar", "radar")
+        wanted = options.sensors if options.sensors is not None else default_sensors(rec)
         for s in wanted:
             cfg.sensor(s)  # the tuning must cover every sensor used
         found = scans_from_recording(
