@@ -179,3 +179,42 @@ def test_far_tracks_count_only_tracks_beyond_the_gate():
     )
     np.testing.assert_array_equal(run_far_tracks([tracks], truth, 25.0)[0], [0, 1])
     np.testing.assert_array_equal(run_far_tracks([tracks], truth, 25.0, window=(0.5, 2.0))[0], [1])
+
+
+def test_dont_care_vessels_are_neither_clutter_nor_false_tracks():
+    """A vessel without ground truth (``dont_care``): its plots are not clutter and a track on it is not false,
+    so a replica that lacks it, or detects it less often, is not charged for it in the plot terms."""
+    from seatwin.evaluation import evaluate
+    from seatwin.evaluation.score import score_runs
+    from seatwin.evaluation.tracks_io import PlotLog, Tracks
+
+    times = np.arange(40, dtype=float)
+    still = np.zeros(2)
+    truth = TruthSet({"a": TruthTrack("a", np.array([0.0, 40.0]), still, still, still, still)})
+    boat = TruthSet({"boat": TruthTrack("boat", np.array([0.0, 40.0]), [500.0, 500.0], still, still, still)})
+
+    def run(with_boat: bool) -> Tracks:
+        plots = [np.array([[1.0, 0.0], [500.0, 2.0]] if with_boat else [[1.0, 0.0]]) for _ in times]
+        n = 2 if with_boat else 1
+        state = np.zeros((len(times) * n, 4))
+        if with_boat:
+            state[1::2, 0] = 500.0
+        return Tracks(
+            np.repeat(times, n),
+            np.tile(np.arange(n), len(times)),
+            np.full(len(times) * n, 0.9),
+            state,
+            np.tile(np.eye(4), (len(times) * n, 1, 1)),
+            np.ones(len(times) * n, bool),
+            scan_times=times,
+            plots=PlotLog(times, tuple(plots)),
+        )
+
+    real, synth = run(True), run(False)
+    evals = [evaluate(real, truth, 10.0)], [evaluate(synth, truth, 10.0)]
+    o = ScoreOptions(n_boot=20)
+    charged = score_runs([real], [synth], truth, *evals, o)
+    assert charged.plots["clutter"].value > 0.5 and charged.plots["false_tracks"].value > 0.5
+    spared = score_runs([real], [synth], truth, *evals, o, dont_care=boat)
+    assert spared.plots["clutter"].value == 0.0 and spared.plots["false_tracks"].value == 0.0
+    assert spared.targets["a"].value == charged.targets["a"].value

@@ -94,31 +94,25 @@ def test_fidelity_bad_input(tmp_path, capsys):
 
 
 @pytest.mark.slow
-def test_fidelity_real_joyride(shared_data, tmp_path):
+def test_fidelity_real_joyride_ranks_the_fitted_model_first(shared_data, tmp_path):
+    """Issue 13's acceptance check on the real data: fitted on the first half, scored on the held-out half
+    against the six wrong models, 5 seeds each, the fitted radar model ranks first."""
     out = tmp_path / "real"
-    code = run(
-        [
-            "fidelity",
-            "joyride",
-            str(shared_data / "joyride" / "joyride.mat"),
-            "--out",
-            str(out),
-            "--seeds",
-            "1",
-            "--agents",
-            "jipda",
-            "--boot",
-            "50",
-            "--fit-on",
-            "first-half",
-            "--fit-boot",
-            "5",
-        ]
-    )
-    assert code == 0
+    args = ["fidelity", "joyride", str(shared_data / "joyride" / "joyride.mat"), "--out", str(out), "--seeds", "5"]
+    args += ["--agents", "jipda", "--boot", "100", "--fit-on", "first-half", "--fit-boot", "5", "--ablations"]
+    assert run(args) == 0
     j = json.loads((out / "fidelity.json").read_text())
     assert 0.0 < j["ahed"] < 1.0
     assert j["n_common"] > 0
+    ranking = j["ranking"]
+    assert [r["model"] for r in ranking][0] == "fitted", ranking
+    assert {r["model"] for r in ranking} == {"fitted", "default", "no_bias", "wide_noise", "low_pd", "heavy_clutter", "too_clean"}
+    fitted = ranking[0]
+    assert fitted["ci_low"] <= fitted["score"] <= fitted["ci_high"]
+    by_model = {r["model"]: r for r in ranking}
+    for clearly_worse in ("default", "heavy_clutter", "too_clean"):
+        assert by_model[clearly_worse]["score"] > fitted["ci_high"], (clearly_worse, ranking)
+    assert "untruthed1" in j["assumptions"]["untruthed_vessels"]  # the boat without GNSS: in the replica, don't-care in the score
     page = (out / "index.html").read_text()
     assert len(page) > 10_000
     assert "Models ranked by fidelity score" in page and 'alt="fidelity score by model"' in page
@@ -250,3 +244,29 @@ def test_seeds_run_as_engine_jobs_and_resume(toy_mat, tmp_path, monkeypatch):
     monkeypatch.setattr(fjobs, "seed_run", lambda p, i: calls.append(p) or {})
     again = run_fidelity(str(toy_mat), jobs_in=tmp_path, **kw)
     assert calls == [] and again.primary.ahed == first.primary.ahed and again.primary.score == first.primary.score
+
+
+def test_untruthed_vessels_are_long_off_target_tracks_and_become_dont_care_truth():
+    from seatwin.evaluation.tracks_io import Tracks
+    from seatwin.fidelity.joyride import JoyrideData, untruthed_vessels, vessels_truth
+
+    n = 40
+    t = 100.0 + np.arange(n)
+    target = np.column_stack([np.zeros(n), np.zeros(n), 10.0 * np.arange(n), np.full(n, 10.0)])
+    data = JoyrideData(t, [np.empty((0, 2))] * n, target, np.zeros((n, 4)))
+    rows = []  # (time, id, north, east): 1 follows the target, 2 a boat 500 m north for 30 scans, 3 a blip of 5 scans
+    for k in range(n):
+        rows.append((t[k], 1, 2.0, target[k, 2]))
+        if 5 <= k < 35:
+            rows.append((t[k], 2, 500.0 + k, 0.0))
+        if k < 5:
+            rows.append((t[k], 3, -300.0, 0.0))
+    time, ids, north, east = (np.array(c) for c in zip(*rows))
+    state = np.column_stack([north, np.zeros(len(rows)), east, np.zeros(len(rows))])
+    tracks = Tracks(time, ids, np.full(len(rows), 0.9), state, np.tile(np.eye(4), (len(rows), 1, 1)), np.ones(len(rows), bool))
+    vessels = untruthed_vessels(tracks, data, gate_m=60.0)
+    assert list(vessels) == ["untruthed1"]
+    np.testing.assert_allclose(vessels["untruthed1"][[0, -1], 0], [t[5], t[34]])
+    boat = vessels_truth(vessels)["untruthed1"]
+    np.testing.assert_allclose(boat.state_at(t[10])[[0, 2]], [510.0, 0.0])
+    assert np.isnan(boat.state_at(t[0])).all() and np.isnan(boat.state_at(t[-1])).all()

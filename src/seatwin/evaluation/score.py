@@ -369,12 +369,16 @@ def score_runs(
     synthetic_evaluations: Sequence[Evaluation],
     options: ScoreOptions | None = None,
     window: tuple[float, float] | None = None,
+    dont_care: TruthSet | None = None,
 ) -> FidelityScore:
     """The score of synthetic runs (e.g. one per seed) against real runs, within ``window`` when given:
     the target terms from the runs' evaluations against ``truth``, the plot terms from their tracks and
     plot logs (:func:`run_clutter`, :func:`run_far_tracks`, :func:`run_shapes`; a run without a plot log,
-    e.g. read from a track file, leaves the clutter and shape terms refused)."""
+    e.g. read from a track file, leaves the clutter and shape terms refused). Plots and tracks near a vessel of
+    ``dont_care`` (vessels without ground truth, e.g. followed by the real tracker) are neither clutter nor false
+    tracks: they are not scored at all (a "don't care" region that moves with the vessel)."""
     o = options or ScoreOptions()
+    vessels = truth if dont_care is None else TruthSet({**truth.targets, **dont_care.targets}, truth.source)
     names = [s.target for s in real_evaluations[0].summaries] if real_evaluations else []
     targets = {
         name: target_score(
@@ -385,15 +389,18 @@ def score_runs(
         )
         for name in names
     }
-    clutter_r, clutter_s = run_clutter(real, truth, o.clutter_gate, window), run_clutter(synthetic, truth, o.clutter_gate, window)
+    clutter_r, clutter_s = (
+        run_clutter(real, vessels, o.clutter_gate, window),
+        run_clutter(synthetic, vessels, o.clutter_gate, window),
+    )
     shapes_r, shapes_s = run_shapes(real, window), run_shapes(synthetic, window)
     plots = {
         "clutter": _refused(NO_PLOTS)
         if clutter_r is None or clutter_s is None
         else rate_score(clutter_r, clutter_s, o, stream="clutter"),
         "false_tracks": rate_score(
-            run_far_tracks(real, truth, o.clutter_gate, window),
-            run_far_tracks(synthetic, truth, o.clutter_gate, window),
+            run_far_tracks(real, vessels, o.clutter_gate, window),
+            run_far_tracks(synthetic, vessels, o.clutter_gate, window),
             o,
             stream="false_tracks",
         ),

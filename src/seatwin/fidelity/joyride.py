@@ -26,7 +26,7 @@ from numpy.typing import NDArray
 from seatwin.errors import InputError, ParameterError
 
 if TYPE_CHECKING:
-    from seatwin.evaluation import Tracks
+    from seatwin.evaluation import Tracks, TruthSet
     from seatwin.scenario.model import Scenario
     from seatwin.sensors.radar.config import RadarConfig
     from seatwin.sensors.radar.fit import RadarObservations
@@ -115,6 +115,16 @@ def untruthed_vessels(
         if len(t) >= min_scans and off.mean() >= share:
             out[f"untruthed{len(out) + 1}"] = np.column_stack([t, tracks.state[m]])
     return out
+
+
+def vessels_truth(vessels: dict[str, NDArray[np.float64]], source: str = "<memory>") -> TruthSet:
+    """Un-truthed vessels (:func:`untruthed_vessels`) as a :class:`seatwin.evaluation.TruthSet` of their
+    track estimates: the score's "don't care" regions (defined only over the span each was tracked)."""
+    from seatwin.evaluation import TruthSet, TruthTrack
+
+    return TruthSet(
+        {name: TruthTrack(name, r[:, 0], r[:, 1], r[:, 3], r[:, 2], r[:, 4], source) for name, r in vessels.items()}, source
+    )
 
 
 def replica_scenario(

@@ -38,6 +38,7 @@ from seatwin.fidelity.joyride import (
     observations,
     replica_scene,
     untruthed_vessels,
+    vessels_truth,
 )
 from seatwin.fidelity.options import FidelityOptions
 from seatwin.fidelity.results import AgentResult, FidelityResult, ModelResult, OffTarget, PlotStatistics, SeedResult, WindowStats
@@ -175,7 +176,12 @@ def score_options(opts: FidelityOptions) -> ScoreOptions:
 
 
 def window_score(
-    real: Tracks, synthetic: list[Tracks], truth: TruthSet, window: tuple[float, float], options: ScoreOptions
+    real: Tracks,
+    synthetic: list[Tracks],
+    truth: TruthSet,
+    window: tuple[float, float],
+    options: ScoreOptions,
+    dont_care: TruthSet | None = None,
 ) -> FidelityScore:
     """The unpaired fidelity score (:func:`seatwin.evaluation.score.score_runs`) of the synthetic runs
     (all seeds pooled) against the real run, on ``window``: target errors and coverage, clutter plots per
@@ -187,7 +193,7 @@ def window_score(
     copts = CompareOptions(score=options)
     evals_real = [window_evaluation(real, truth, window, copts)]
     evals_synth = [window_evaluation(s, truth, window, copts) for s in synthetic]
-    return score_runs([real], synthetic, truth, evals_real, evals_synth, options, window)
+    return score_runs([real], synthetic, truth, evals_real, evals_synth, options, window, dont_care)
 
 
 def _agent_result(
@@ -244,9 +250,11 @@ def evaluate_model(
     real_tracks: dict[str, Tracks],
     seeds: list[tuple[int, list[NDArray[np.float64]], dict[str, Tracks]]],
     label: str = "",
+    dont_care: TruthSet | None = None,
 ) -> ModelResult:
     """AHED and the score per agent in ``window`` of radar ``config``'s synthetic recordings: ``seeds`` holds,
-    per seed in order, its plots per scan and its tracks per agent (:mod:`seatwin.fidelity.jobs`)."""
+    per seed in order, its plots per scan and its tracks per agent (:mod:`seatwin.fidelity.jobs`); plots and
+    tracks near a vessel of ``dont_care`` are left out of the score's plot terms."""
     from seatwin.evaluation import CompareOptions, compare
 
     truth = truth_of(data)
@@ -270,7 +278,7 @@ def evaluate_model(
             runs[agent].append(window_stats(comp.series[TARGET], window, seed))
     for agent in opts.agents:
         floor = floor_stats(synth_tracks[agent], opts.seed0, truth, window, opts.tuning)
-        score = window_score(real_tracks[agent], synth_tracks[agent], truth, window, score_options(opts))
+        score = window_score(real_tracks[agent], synth_tracks[agent], truth, window, score_options(opts), dont_care)
         result.agents[agent] = _agent_result(
             runs[agent], floor, off_target[agent], off_target_tracks(real_tracks[agent], data, window), opts, score
         )
@@ -398,10 +406,13 @@ def run_fidelity(
             "untruthed_vessels": {
                 name: {"from": float(rows[0, 0]), "to": float(rows[-1, 0]), "scans": len(rows)} for name, rows in extra.items()
             },
+            "score_dont_care": "plots and confirmed tracks within 60 m of an un-truthed vessel are neither clutter nor "
+            "false tracks in the fidelity score (both datasets)",
         },
         radar_fit=fit_report,
         models={
-            label: evaluate_model(data, cfg, opts, window, real_tracks, seeds[label], label) for label, cfg in models.items()
+            label: evaluate_model(data, cfg, opts, window, real_tracks, seeds[label], label, vessels_truth(extra, data.source))
+            for label, cfg in models.items()
         },
         primary_model="fitted" if "fitted" in models else "default",
         primary_agent=opts.agents[0],

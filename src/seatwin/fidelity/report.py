@@ -284,7 +284,14 @@ def render_markdown(result: FidelityResult) -> str:
         "* Fidelity score (seatwin.evaluation.score, S1–S5): never pairs instants; per target the Hellinger distance "
         "of Gaussians fitted to the tracker's position errors (real versus all seeds pooled) combined with the "
         "coverage difference, and plot-level Poisson Hellinger terms for clutter plots per scan (plots farther than "
-        "the clutter gate from the target) and false tracks per run; everything inside the evaluation window.",
+        "the clutter gate from the target) and false tracks per scan; everything inside the evaluation window.",
+        "* Un-truthed vessels (boats without GNSS that the real tracker follows away from the target: "
+        + (
+            ", ".join(f"{k} over {v['scans']} scans" for k, v in result.assumptions.get("untruthed_vessels", {}).items())
+            or "none"
+        )
+        + ") are in the replica and are don't-care regions in the score: their plots are not clutter, a track on them "
+        "is not a false track, in both datasets.",
         "* Headings from velocity (the dataset has none); target box size assumed; world posed once per scan.",
         "* `n_common`, `n_only_real`, `n_only_synthetic` are means over seeds.",
         "* `index.html` (the comparison report) shows seed 0 of each model over the whole recording; the "

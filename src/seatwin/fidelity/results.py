@@ -231,6 +231,7 @@ class FidelityResult:
             "ahed_seed_std": prim.ahed_seed_std,
             "ahed_per_seed": prim.ahed_per_seed,
             "real_statistics": asdict(self.real_statistics),
+            "assumptions": self.assumptions,
             "ranking": self.ranking(),
             "models": {label: m.to_json() for label, m in self.models.items()},
         }
