@@ -72,6 +72,48 @@ def test_rerun_skips_finished_jobs_and_retries_failed_ones(tmp_path):
     assert CALLS == [1]
 
 
+def test_results_of_other_code_are_run_again_and_a_worker_with_other_code_fails(tmp_path, monkeypatch):
+    from seatwin.campaign import engine
+    from seatwin.provenance import code_fingerprint
+
+    jobs = _jobs()[:2]
+    first = run_jobs(jobs, square_or_fail, tmp_path, engine="sequential")
+    assert {r.code for r in first.records.values()} == {code_fingerprint()}
+    assert json.loads((tmp_path / "jobs" / f"{jobs[0].id}.json").read_text())["code"] == code_fingerprint()
+    path = tmp_path / "jobs" / f"{jobs[0].id}.json"
+    path.write_text(path.read_text().replace(code_fingerprint(), "0123456789abcdef"))  # made by other code
+    CALLS.clear()
+    again = run_jobs(jobs, square_or_fail, tmp_path, engine="sequential")
+    assert CALLS == [1] and (again.n_cached, again.n_stale) == (1, 1)
+    assert again.describe()["rerun_for_other_code"] == 1 and again.describe()["code"] == code_fingerprint()
+
+    # a worker whose seatwin differs from the driver's (a cluster node not updated): its result is not kept,
+    # and a job needing it does not run on it either
+    real_execute = engine.execute
+
+    def on_other_node(fn, job, *needed):
+        record = real_execute(fn, job, *needed)
+        record.code, record.host = "fedcba9876543210", "node7"
+        return record
+
+    monkeypatch.setattr(engine, "execute", on_other_node)
+    a = Job({"x": 10})
+    report = run_jobs([a, Job({"x": 11}, needs=(a.id,))], square_or_fail, tmp_path / "other", engine="sequential")
+    rec_a, rec_b = report.records.values()
+    assert not rec_a.ok and rec_a.result is None
+    assert rec_a.error == (
+        f"ran on node7 with seatwin code fedcba9876543210, but this driver runs code {code_fingerprint()}: "
+        "install the same seatwin on every node"
+    )
+    assert not rec_b.ok and rec_b.error.startswith(f"needs job {a.id}, which failed: ran on node7")
+    # on Ray a dependent task gets the needed result as the worker returned it: it checks the code itself
+    monkeypatch.setattr(engine, "execute", real_execute)
+    stale_input = engine.JobRecord(a.id, a.params, True, {"y": 100}, code="fedcba9876543210")
+    rec = engine.execute(square_or_fail, Job({"x": 11}, needs=(a.id,)), stale_input)
+    assert not rec.ok
+    assert rec.error == f"needs job {a.id}, which ran with seatwin code fedcba9876543210, not this worker's {code_fingerprint()}"
+
+
 def test_bad_job_lists_and_options(tmp_path):
     a = Job({"x": 1})
     with pytest.raises(ParameterError, match="listed twice"):

@@ -6,11 +6,13 @@ A :class:`Job` is a JSON-able mapping of parameters with a stable id (a hash of 
 keeps each outcome as ``out_dir/jobs/<id>.json``, written atomically by the driver as the job
 finishes, so that:
 
-* a re-run skips the jobs whose file says ``ok`` (a failed job is run again);
+* a re-run skips the jobs whose file says ``ok`` and was written by the code running now
+  (:func:`seatwin.provenance.code_fingerprint`; a failed job, or one run by other code, is run again);
 * a job that raises is recorded with its error message and never stops the others (a job that
   needs a failed one fails with the reason, without running);
 * the driver does all the file I/O: tasks only compute and return, so a cluster needs no shared
-  file system (only seatwin installed on every node).
+  file system (only seatwin installed on every node; a result from a worker whose seatwin differs
+  from the driver's is recorded as failed, with both fingerprints).
 
 Engines: ``"ray"`` submits every job as a Ray task (dependencies passed as object references,
 so a needed result travels between nodes once) on a local Ray instance of ``workers`` CPUs, or
@@ -37,6 +39,7 @@ from pathlib import Path
 from typing import Any, Literal
 
 from seatwin.errors import InputError, ParameterError
+from seatwin.provenance import code_fingerprint
 
 Engine = Literal["ray", "sequential"]
 ENGINES: tuple[str, ...] = ("ray", "sequential")
@@ -88,6 +91,8 @@ class JobRecord:
     cpu_s: float = 0.0
     """CPU seconds of the worker's process meanwhile (all its threads): the cost, whatever else shares the machine."""
     host: str = ""
+    code: str = ""
+    """The fingerprint of the seatwin code that ran it (:func:`seatwin.provenance.code_fingerprint`)."""
     cached: bool = False
     """True when this run found it finished and did not run it again (not stored)."""
 
@@ -111,6 +116,8 @@ class RunReport:
     n_run: int = 0
     n_cached: int = 0
     n_failed: int = 0
+    n_stale: int = 0
+    """Finished jobs run again because other code had run them."""
     extra: dict[str, Any] = field(default_factory=dict)
 
     def describe(self) -> dict[str, Any]:
@@ -126,6 +133,8 @@ class RunReport:
             "run": self.n_run,
             "cached": self.n_cached,
             "failed": self.n_failed,
+            "rerun_for_other_code": self.n_stale,
+            "code": code_fingerprint(),
             "wall_s": self.wall_s,
             "job_s_this_run": float(sum(r.elapsed_s for r in ran)),
             "job_cpu_s_this_run": float(sum(r.cpu_s for r in ran)),
@@ -144,10 +153,16 @@ def error_message(exc: BaseException) -> str:
 
 def execute(fn: JobFn, job: Job, *needed: JobRecord) -> JobRecord:
     """Run one job (in a Ray worker or in this process): its record, never an exception."""
-    host = socket.gethostname()
+    host, code = socket.gethostname(), code_fingerprint()
     failed = next((r for r in needed if not r.ok), None)
-    if failed is not None:
-        return JobRecord(job.id, job.params, False, error=f"needs job {failed.id}, which failed: {failed.error}", host=host)
+    other = next((r for r in needed if r.code != code), None)
+    if failed is not None or other is not None:
+        error = (
+            f"needs job {failed.id}, which failed: {failed.error}"
+            if failed is not None
+            else f"needs job {other.id}, which ran with seatwin code {other.code}, not this worker's {code}"  # type: ignore[union-attr]
+        )
+        return JobRecord(job.id, job.params, False, error=error, host=host, code=code)
     start, cpu = time.perf_counter(), time.process_time()
     try:
         # through JSON, so that a fresh result is exactly what a later run reads back from the job's file
@@ -155,7 +170,8 @@ def execute(fn: JobFn, job: Job, *needed: JobRecord) -> JobRecord:
         ok, error = True, None
     except Exception as exc:  # noqa: BLE001 - a job's failure is recorded, never stops the others
         result, ok, error = None, False, error_message(exc)
-    return JobRecord(job.id, job.params, ok, result, error, time.perf_counter() - start, time.process_time() - cpu, host=host)
+    elapsed, cpu = time.perf_counter() - start, time.process_time() - cpu
+    return JobRecord(job.id, job.params, ok, result, error, elapsed, cpu, host=host, code=code)
 
 
 def execute_in_task(fn: JobFn, job: Job, *needed: JobRecord) -> JobRecord:
@@ -176,14 +192,22 @@ def record_path(out_dir: Path, job_id_: str) -> Path:
     return out_dir / JOBS_DIR / f"{job_id_}.json"
 
 
-def read_record(out_dir: Path, job: Job) -> JobRecord | None:
-    """A finished (``ok``) record of ``job`` under ``out_dir``, else None (missing, failed, unreadable, other params)."""
-    path = record_path(out_dir, job.id)
+def _finished(out_dir: Path, job: Job) -> dict[str, Any] | None:
+    """The file of ``job`` under ``out_dir`` if it holds a finished (``ok``) run of these params, by any code."""
     try:
-        data = json.loads(path.read_text())
+        data = json.loads(record_path(out_dir, job.id).read_text())
     except (OSError, ValueError):
         return None
     if not isinstance(data, dict) or data.get("status") != "ok" or data.get("params") != job.params:
+        return None
+    return data
+
+
+def read_record(out_dir: Path, job: Job) -> JobRecord | None:
+    """A finished (``ok``) record of ``job`` under ``out_dir`` written by the code running now, else None
+    (missing, failed, unreadable, other params, other code)."""
+    data = _finished(out_dir, job)
+    if data is None or data.get("code") != code_fingerprint():
         return None
     return JobRecord(
         job.id,
@@ -194,6 +218,7 @@ def read_record(out_dir: Path, job: Job) -> JobRecord | None:
         float(data.get("elapsed_s", 0.0)),
         float(data.get("cpu_s", 0.0)),
         str(data.get("host", "")),
+        str(data.get("code", "")),
         True,
     )
 
@@ -351,9 +376,11 @@ def run_jobs(
     keep = keep or (lambda _job: True)
     records: dict[str, JobRecord] = {}
     todo: list[Job] = []
+    n_stale = 0
     for job in jobs:
         cached = read_record(out_dir, job)
         if cached is None:
+            n_stale += _finished(out_dir, job) is not None
             todo.append(job)
             continue
         if not keep(job):
@@ -375,6 +402,12 @@ def run_jobs(
 
     def done(record: JobRecord) -> None:
         nonlocal n_done
+        if record.ok and record.code != code_fingerprint():
+            record.ok, record.result = False, None
+            record.error = (
+                f"ran on {record.host} with seatwin code {record.code}, but this driver runs code {code_fingerprint()}: "
+                "install the same seatwin on every node"
+            )
         records[record.id] = record
         write_record(out_dir, record)
         release(record.id)
@@ -403,4 +436,5 @@ def run_jobs(
     report.n_cached = sum(r.cached for r in report.records.values())
     report.n_run = len(jobs) - report.n_cached
     report.n_failed = sum(not r.ok for r in report.records.values())
+    report.n_stale = n_stale
     return report
