@@ -113,6 +113,18 @@ RANKING_NOTE = (
 )
 
 
+def ranking_note(result: FidelityResult) -> str:
+    """:data:`RANKING_NOTE`, and the vessels without ground truth that the score's plot terms leave out."""
+    vessels = result.assumptions.get("untruthed_vessels", {})
+    if not vessels:
+        return RANKING_NOTE
+    names = ", ".join(f"{name} ({v['scans']} scans)" for name, v in vessels.items())
+    return (
+        f"{RANKING_NOTE} Vessels without ground truth that the real tracker follows ({names}) are in the replica and "
+        "are don't-care regions of the clutter and false-track terms, in both datasets."
+    )
+
+
 def ranking_markdown(result: FidelityResult) -> list[str]:
     """The ranking table (primary agent; :meth:`FidelityResult.ranking`) as Markdown lines."""
     lines = [
@@ -135,7 +147,7 @@ def ranking_markdown(result: FidelityResult) -> list[str]:
         bullets = [f"* every model: {notes[0][1]}"]
     else:
         bullets = [f"* `{model}`: {why}" for model, why in notes]
-    return [*lines, "", *bullets, *([""] if bullets else []), RANKING_NOTE, ""]
+    return [*lines, "", *bullets, *([""] if bullets else []), ranking_note(result), ""]
 
 
 def ranking_figure(rows: list[dict[str, Any]], title: str) -> bytes:
@@ -196,7 +208,7 @@ def ranking_html(result: FidelityResult) -> str:
             f"<h2>{h.escape(title)}</h2>",
             _table(header, table, left=2),
             _img(ranking_figure(rows, title), "fidelity score by model"),
-            f'<p class="note">{h.escape(RANKING_NOTE)}</p>',
+            f'<p class="note">{h.escape(ranking_note(result))}</p>',
         ]
     )
 
