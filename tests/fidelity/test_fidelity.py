@@ -117,7 +117,7 @@ def test_fidelity_real_joyride_ranks_the_fitted_model_first(shared_data, tmp_pat
     assert len(page) > 10_000
     assert "Models ranked by fidelity score" in page and 'alt="fidelity score by model"' in page
     assert "held-out second half" in page and "agent JIPDA" in page  # which half was fitted; the agent on each row
-    assert "untruthed1 (113 scans) are in the replica and are don&#x27;t-care regions" in page
+    assert "(untruthed1 (113 scans)) are in the replica and are don&#x27;t-care regions" in page
 
 
 def test_calibrate_bias_needs_a_fit_and_sets_the_tracker_bias(toy_mat, tmp_path, capsys):
