@@ -13,7 +13,8 @@ _HELP = (
     "reference_seed_offset, never the same draws). Jobs run as Ray tasks: a local Ray instance by default, a "
     "cluster with --address. Writes DIR/results.csv (one row per job, tuning and target: the fidelity score, "
     "AHED, n_common…), DIR/campaign.json (engine, grid, timings) and DIR/jobs/ (one file per finished job: a "
-    "re-run skips them, so an interrupted campaign resumes). Example: docs/examples/campaign.yaml."
+    "re-run skips them, so an interrupted campaign resumes; jobs that other seatwin code ran run again). Example: "
+    "docs/examples/campaign.yaml."
 )
 
 
