@@ -222,3 +222,34 @@ def test_pairing_of_runs_and_tunings() -> None:
         _pairs(["a.csv"], [], [])
     with pytest.raises(InputError, match="2 tunings for 3"):
         _pairs(["a.csv"] * 3, ["b.csv"] * 3, ["x", "y"])
+
+
+def test_compare_dont_care_vessels_are_left_out_of_the_score(scenario_file: Path, tracks_factory, tmp_path: Path, capsys):
+    """A boat without ground truth (C, e.g. known from AIS) that only the real tracker follows: a false track
+    for the score unless given as --dont-care; the target terms do not change."""
+    scans = [T0 + k for k in range(21)]
+    real_rows = [(T0 + k, 1, k + 0.5, 0.0) for k in range(18)] + [(T0 + k, 2, 300.0, 300.0) for k in range(21)]
+    real = tracks_factory(real_rows, scan_times=scans)
+    synt = tracks_factory([(T0 + k, 3, k - 0.5, 0.0) for k in range(2, 20)], scan_times=scans)
+    paths = tmp_path / "real_c.csv", tmp_path / "synt_c.csv"
+    write_tracks(paths[0], real)
+    write_tracks(paths[1], synt)
+    t = T0 + np.arange(0.0, 20.01, 0.1)
+    z = np.zeros_like(t)
+    boat = Scenario("ais", [Vessel("C", Role.TARGET, Trajectory(t, z + 300.0, z + 300.0, z))])
+    ais, _ = save_scenario(boat, tmp_path / "ais.yaml")
+    base = ["compare", "--real", str(paths[0]), "--synthetic", str(paths[1]), "--truth", str(scenario_file)]
+    runs = {}
+    for name, extra in (("charged", []), ("spared", ["--dont-care", str(ais)])):
+        out = tmp_path / f"{name}.json"
+        assert run([*base, *extra, "--json", str(out)]) == 0
+        runs[name] = json.loads(out.read_text())
+    false_tracks = {k: v["score_by_tuning"][""]["false_tracks"]["value"] for k, v in runs.items()}
+    assert false_tracks["charged"] > 0.3 and false_tracks["spared"] == 0.0
+    assert runs["spared"]["dont_care"] == {"source": str(ais), "vessels": ["C"]} and "dont_care" not in runs["charged"]
+    assert [t["score"] for t in runs["spared"]["targets"]] == [t["score"] for t in runs["charged"]["targets"]]
+    assert "don't-care vessels (fidelity score): C" in capsys.readouterr().out
+    # a file whose vessels are all targets already leaves nothing out: refused, naming it
+    assert run([*base, "--dont-care", str(scenario_file)]) == 2
+    err = capsys.readouterr().err
+    assert str(scenario_file) in err and "no vessel here beyond the ground truth's targets (A, B)" in err

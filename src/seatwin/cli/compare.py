@@ -121,6 +121,16 @@ def register(app: typer.Typer) -> None:
         box_min_iou: float | None = typer.Option(
             None, "--box-min-iou", metavar="IOU", help="Smallest IoU of a matched pair of boxes in the box comparison (0.3)."
         ),
+        dont_care: str | None = typer.Option(
+            None,
+            "--dont-care",
+            metavar="FILE",
+            help=(
+                "Vessels without reliable ground truth (a scenario, truth CSV or recording, e.g. AIS tracks): their "
+                "plots and tracks are neither clutter nor false tracks in the fidelity score. Vessels that are "
+                "targets of --truth are ignored."
+            ),
+        ),
     ) -> None:
         import json
 
@@ -160,8 +170,11 @@ def register(app: typer.Typer) -> None:
             detector=detector,
             model=None if model is None else str(model),
             box_min_iou=box_min_iou,
+            dont_care=dont_care,
         )
         table = result.table
+        if result.dont_care is not None:
+            typer.echo(f"don't-care vessels (fidelity score): {', '.join(result.dont_care['vessels'])}")
         typer.echo(
             f"{'target':<12} {'tuning':<10} {'AHED':>9} {'common':>6} {'only_r':>6} {'only_s':>6} {'covdiff':>8} "
             f"{'score [95% CI]':>22}"

@@ -272,15 +272,17 @@ def compare(
     tuning: str = "",
     options: CompareOptions | None = None,
     mask: object | None = None,
+    dont_care: TruthSet | None = None,
 ) -> Comparison:
     """Compare a real and a synthetic tracker run against the same ground truth (thesis 5.2.1); false tracks
-    on land are counted with the water ``mask`` when given."""
+    on land are counted with the water ``mask`` when given; the score leaves plots and tracks near a vessel of
+    ``dont_care`` out of its clutter and false-track terms (:func:`seatwin.evaluation.score.score_runs`)."""
     options = options or CompareOptions()
     ev_r = evaluate(real, truth, options.gate, options.confirmed_only, options.confidence, mask)
     ev_s = evaluate(synthetic, truth, options.gate, options.confirmed_only, options.confidence, mask)
     result = Comparison(tuning, options, ev_r, ev_s)
     if options.score is not None:
-        result.score = score_runs([real], [synthetic], truth, [ev_r], [ev_s], options.score)
+        result.score = score_runs([real], [synthetic], truth, [ev_r], [ev_s], options.score, dont_care=dont_care)
     for name in truth.names:
         series, line = compare_target(ev_r, ev_s, truth, name, tuning, options)
         if result.score is not None:

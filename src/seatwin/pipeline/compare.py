@@ -124,10 +124,14 @@ class CompareResult:
     track_files: list[Path] = field(default_factory=list)
     camera: dict[str, Any] | None = None
     """Lidar against lidar + camera AHED and the box comparison (:func:`camera_comparison`); None without cameras."""
+    dont_care: dict[str, Any] | None = None
+    """The vessels the score left out as don't-care regions, and their source; None when none were given."""
 
     def to_json(self) -> dict[str, Any]:
         """The JSON of ``seatwin compare --json``."""
         extra = {} if self.camera is None else {"camera": self.camera}
+        if self.dont_care is not None:
+            extra["dont_care"] = self.dont_care
         return {"real": self.real, "synthetic": self.synthetic, "truth": self.truth, **self.table, **extra}
 
 
@@ -142,6 +146,20 @@ def _clouds(real: str, synthetic: str, when: float, sensor: str, truth: TruthSet
     t = when + (min(tr.start for tr in truth.targets.values()) if relative else 0.0)
     r, s = cloud_at(real, t, sensor), cloud_at(synthetic, t, sensor)
     return Clouds(r.time, r.points, s.points, r.ownship, r.targets)
+
+
+def dont_care_vessels(source: str | Path, truth: TruthSet) -> TruthSet:
+    """The vessels of ``source`` (anything :func:`seatwin.evaluation.load_truth` reads) that are not targets of
+    ``truth``: the score's don't-care regions. A source whose vessels are all targets is refused."""
+    from seatwin.evaluation import TruthSet, load_truth
+
+    vessels = load_truth(source)
+    extra = {name: track for name, track in vessels.targets.items() if name not in truth.targets}
+    if not extra:
+        raise InputError(
+            source, f"no vessel here beyond the ground truth's targets ({', '.join(truth.names)}): nothing to leave out"
+        )
+    return TruthSet(extra, str(source))
 
 
 def compare_runs(
@@ -161,6 +179,7 @@ def compare_runs(
     detector: str = "label",
     model: str | None = None,
     box_min_iou: float | None = None,
+    dont_care: str | Path | None = None,
 ) -> CompareResult:
     """Compare each real/synthetic pair against ``truth`` (scenario or recording), per tuning.
 
@@ -169,7 +188,9 @@ def compare_runs(
     of tracked recordings into this folder. ``camera_fusion``: where both recordings of a pair
     have lidar and cameras, also compare lidar alone against lidar + camera with the camera
     ``detector`` (``label``, or ``onnx`` with ``model``) and their boxes (matched at IoU ≥ ``box_min_iou``, default
-    :data:`~seatwin.evaluation.boxes.DEFAULT_MIN_IOU`).
+    :data:`~seatwin.evaluation.boxes.DEFAULT_MIN_IOU`). ``dont_care``: a scenario, truth file or recording with
+    vessels that have no reliable ground truth (e.g. AIS tracks); its vessels that are not targets of ``truth``
+    are neither clutter nor false tracks in the fidelity score (:func:`dont_care_vessels`).
     """
     from seatwin.evaluation import CompareOptions, compare, comparison_table, load_truth, write_tracks
     from seatwin.evaluation.boxes import DEFAULT_MIN_IOU
@@ -187,6 +208,7 @@ def compare_runs(
         raise ParameterError("clouds_sensor", f"expected 'lidar' or 'radar', got {clouds_sensor!r}")
     pairs = comparison_pairs(real, synthetic, list(tunings))
     truth_set = load_truth(truth)
+    ignored = None if dont_care is None else dont_care_vessels(dont_care, truth_set)
     mask = recording_mask(truth)
     cache: dict[tuple[str, str | None, tuple[str, ...]], Tracks] = {}
     written: set[tuple[str, str | None, tuple[str, ...]]] = set()
@@ -216,7 +238,7 @@ def compare_runs(
         run_r, run_s = run_of(r, t, "real"), run_of(s, t, "synthetic")
         check_overlap(run_r, truth_set, r)
         check_overlap(run_s, truth_set, s)
-        comparisons.append(compare(run_r, run_s, truth_set, tuning=label, options=options, mask=mask))
+        comparisons.append(compare(run_r, run_s, truth_set, tuning=label, options=options, mask=mask, dont_care=ignored))
     camera = None
     recordings = [p for p in pairs if not is_track_file(p[0]) and not is_track_file(p[1])]
     if camera_fusion and recordings:
@@ -226,6 +248,8 @@ def compare_runs(
     result = CompareResult(
         real, synthetic, str(truth), comparisons, comparison_table(comparisons), track_files=kept, camera=camera
     )
+    if ignored is not None:
+        result.dont_care = {"source": str(dont_care), "vessels": ignored.names}
     if report_dir is not None:
         from seatwin.perception.map_mask import load_mask
         from seatwin.report import write_comparison_report
