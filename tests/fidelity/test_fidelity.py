@@ -255,13 +255,16 @@ def test_untruthed_vessels_are_long_off_target_tracks_and_become_dont_care_truth
     t = 100.0 + np.arange(n)
     target = np.column_stack([np.zeros(n), np.zeros(n), 10.0 * np.arange(n), np.full(n, 10.0)])
     data = JoyrideData(t, [np.empty((0, 2))] * n, target, np.zeros((n, 4)))
-    rows = []  # (time, id, north, east): 1 follows the target, 2 a boat 500 m north for 30 scans, 3 a blip of 5 scans
+    # (time, id, north, east): 1 follows the target; 2 a boat 500 m north for 30 scans, travelling 290 m;
+    # 3 a blip of 5 scans; 4 persistent clutter that stays put (within 20 m) for all 40 scans
+    rows = []
     for k in range(n):
         rows.append((t[k], 1, 2.0, target[k, 2]))
         if 5 <= k < 35:
-            rows.append((t[k], 2, 500.0 + k, 0.0))
+            rows.append((t[k], 2, 500.0 + 10.0 * k, 0.0))
         if k < 5:
             rows.append((t[k], 3, -300.0, 0.0))
+        rows.append((t[k], 4, -400.0 + 0.5 * k, 100.0))
     time, ids, north, east = (np.array(c) for c in zip(*rows))
     state = np.column_stack([north, np.zeros(len(rows)), east, np.zeros(len(rows))])
     tracks = Tracks(time, ids, np.full(len(rows), 0.9), state, np.tile(np.eye(4), (len(rows), 1, 1)), np.ones(len(rows), bool))
@@ -269,5 +272,5 @@ def test_untruthed_vessels_are_long_off_target_tracks_and_become_dont_care_truth
     assert list(vessels) == ["untruthed1"]
     np.testing.assert_allclose(vessels["untruthed1"][[0, -1], 0], [t[5], t[34]])
     boat = vessels_truth(vessels)["untruthed1"]
-    np.testing.assert_allclose(boat.state_at(t[10])[[0, 2]], [510.0, 0.0])
+    np.testing.assert_allclose(boat.state_at(t[10])[[0, 2]], [600.0, 0.0])
     assert np.isnan(boat.state_at(t[0])).all() and np.isnan(boat.state_at(t[-1])).all()
