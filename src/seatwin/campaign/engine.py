@@ -154,15 +154,12 @@ def error_message(exc: BaseException) -> str:
 def execute(fn: JobFn, job: Job, *needed: JobRecord) -> JobRecord:
     """Run one job (in a Ray worker or in this process): its record, never an exception."""
     host, code = socket.gethostname(), code_fingerprint()
-    failed = next((r for r in needed if not r.ok), None)
-    other = next((r for r in needed if r.code != code), None)
-    if failed is not None or other is not None:
-        error = (
-            f"needs job {failed.id}, which failed: {failed.error}"
-            if failed is not None
-            else f"needs job {other.id}, which ran with seatwin code {other.code}, not this worker's {code}"  # type: ignore[union-attr]
-        )
-        return JobRecord(job.id, job.params, False, error=error, host=host, code=code)
+    failed = [f"needs job {r.id}, which failed: {r.error}" for r in needed if not r.ok]
+    other = [
+        f"needs job {r.id}, which ran with seatwin code {r.code}, not this worker's {code}" for r in needed if r.code != code
+    ]
+    if failed or other:
+        return JobRecord(job.id, job.params, False, error=(failed + other)[0], host=host, code=code)
     start, cpu = time.perf_counter(), time.process_time()
     try:
         # through JSON, so that a fresh result is exactly what a later run reads back from the job's file
@@ -206,7 +203,11 @@ def _finished(out_dir: Path, job: Job) -> dict[str, Any] | None:
 def read_record(out_dir: Path, job: Job) -> JobRecord | None:
     """A finished (``ok``) record of ``job`` under ``out_dir`` written by the code running now, else None
     (missing, failed, unreadable, other params, other code)."""
-    data = _finished(out_dir, job)
+    return _current_record(job, _finished(out_dir, job))
+
+
+def _current_record(job: Job, data: dict[str, Any] | None) -> JobRecord | None:
+    """The record in ``data`` (a :func:`_finished` file) if the code running now wrote it, else None."""
     if data is None or data.get("code") != code_fingerprint():
         return None
     return JobRecord(
@@ -378,9 +379,10 @@ def run_jobs(
     todo: list[Job] = []
     n_stale = 0
     for job in jobs:
-        cached = read_record(out_dir, job)
+        data = _finished(out_dir, job)
+        cached = _current_record(job, data)
         if cached is None:
-            n_stale += _finished(out_dir, job) is not None
+            n_stale += data is not None
             todo.append(job)
             continue
         if not keep(job):

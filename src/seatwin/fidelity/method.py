@@ -387,6 +387,7 @@ def run_fidelity(
     extra = untruthed_vessels(real_tracks[opts.agents[0]], data, RADAR_CLUTTER_GATE_M) if opts.untruthed_vessels else {}
     idx_w = np.flatnonzero(in_window(data.time, window))
     seeds = _run_seeds(path, models, opts, tuning, extra, jobs_in, workers, address, progress)
+    dont_care = vessels_truth(extra, data.source)
     return FidelityResult(
         dataset=str(path),
         n_scans=n,
@@ -406,12 +407,12 @@ def run_fidelity(
             "untruthed_vessels": {
                 name: {"from": float(rows[0, 0]), "to": float(rows[-1, 0]), "scans": len(rows)} for name, rows in extra.items()
             },
-            "score_dont_care": "plots and confirmed tracks within 60 m of an un-truthed vessel are neither clutter nor "
-            "false tracks in the fidelity score (both datasets)",
+            "score_dont_care": f"plots and confirmed tracks within {RADAR_CLUTTER_GATE_M:g} m of an un-truthed vessel are "
+            "neither clutter nor false tracks in the fidelity score (both datasets)",
         },
         radar_fit=fit_report,
         models={
-            label: evaluate_model(data, cfg, opts, window, real_tracks, seeds[label], label, vessels_truth(extra, data.source))
+            label: evaluate_model(data, cfg, opts, window, real_tracks, seeds[label], label, dont_care)
             for label, cfg in models.items()
         },
         primary_model="fitted" if "fitted" in models else "default",

@@ -113,12 +113,16 @@ RANKING_NOTE = (
 )
 
 
+def untruthed_names(result: FidelityResult) -> str:
+    """The vessels without ground truth in the replica, e.g. ``untruthed1 (113 scans)``; empty if none."""
+    return ", ".join(f"{name} ({v['scans']} scans)" for name, v in result.assumptions.get("untruthed_vessels", {}).items())
+
+
 def ranking_note(result: FidelityResult) -> str:
     """:data:`RANKING_NOTE`, and the vessels without ground truth that the score's plot terms leave out."""
-    vessels = result.assumptions.get("untruthed_vessels", {})
-    if not vessels:
+    names = untruthed_names(result)
+    if not names:
         return RANKING_NOTE
-    names = ", ".join(f"{name} ({v['scans']} scans)" for name, v in vessels.items())
     return (
         f"{RANKING_NOTE} Vessels without ground truth that the real tracker follows ({names}) are in the replica and "
         "are don't-care regions of the clutter and false-track terms, in both datasets."
@@ -298,10 +302,7 @@ def render_markdown(result: FidelityResult) -> str:
         "coverage difference, and plot-level Poisson Hellinger terms for clutter plots per scan (plots farther than "
         "the clutter gate from the target) and false tracks per scan; everything inside the evaluation window.",
         "* Un-truthed vessels (boats without GNSS that the real tracker follows away from the target: "
-        + (
-            ", ".join(f"{k} over {v['scans']} scans" for k, v in result.assumptions.get("untruthed_vessels", {}).items())
-            or "none"
-        )
+        + (untruthed_names(result) or "none")
         + ") are in the replica and are don't-care regions in the score: their plots are not clutter, a track on them "
         "is not a false track, in both datasets.",
         "* Headings from velocity (the dataset has none); target box size assumed; world posed once per scan.",
