@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import importlib
 import sys
+import warnings
 from collections.abc import Sequence
 
 import typer
@@ -47,6 +48,7 @@ COMMAND_MODULES: list[str] = [
     "serve",
     "record_stream",
     "cosim",
+    "harbour",
 ]
 
 
@@ -67,8 +69,19 @@ for _name in COMMAND_MODULES:
     importlib.import_module(f"seatwin.cli.{_name}").register(app)
 
 
+def _show_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int, *_: object) -> None:
+    """A library warning as one line on stderr (no Python source location)."""
+    typer.echo(f"seatwin: warning: {message}", err=True)
+
+
 def run(argv: Sequence[str] | None = None) -> int:
     """Run the CLI with ``argv``; return the exit status (used by ``main`` and by tests)."""
+    with warnings.catch_warnings():
+        warnings.showwarning = _show_warning
+        return _run(argv)
+
+
+def _run(argv: Sequence[str] | None) -> int:
     try:
         # Without standalone mode, a command's typer.Exit(n) comes back as the return value, not an exception.
         code = app(args=list(argv) if argv is not None else None, prog_name="seatwin", standalone_mode=False)

@@ -3,6 +3,11 @@
 The Ravnkloa land raster (``ravnkloa/ravnkloa_radar_base_map.yaml`` + ``.bin``) is real data that
 the project does not ship: it is looked for in ``$SEATWIN_DATA``, then in ``shared/data`` beside or
 inside the current directory and the repository root (:func:`data_search_dirs`).
+
+A raster harbour carries its alignment to the scenario frame (:mod:`seatwin.layout.alignment`):
+``ravnkloa`` the one fitted to the Gemini scenarios and shipped beside this module
+(:data:`RAVNKLOA_ALIGNMENT`); a raster file ``NAME.yaml`` the one in ``NAME.alignment.yaml`` beside
+it, if there is one (else none).
 """
 
 from __future__ import annotations
@@ -11,6 +16,7 @@ import os
 from pathlib import Path
 
 from seatwin.errors import InputError
+from seatwin.layout.alignment import IDENTITY, Alignment, read_alignment
 from seatwin.layout.model import DEFAULT_LAYOUT, HarbourLayout
 from seatwin.layout.raster import LandRaster, read_land_raster
 
@@ -24,6 +30,9 @@ DATA_ENV = "SEATWIN_DATA"
 RAVNKLOA_RASTER = Path("ravnkloa") / "ravnkloa_radar_base_map.yaml"
 """The Ravnkloa land raster, relative to the data folder."""
 _REPO_ROOT = Path(__file__).resolve().parents[3]
+RAVNKLOA_ALIGNMENT = Path(__file__).with_name("ravnkloa_alignment.yaml")
+"""The Ravnkloa raster's alignment to the Gemini scenarios' frame, with its fit's provenance."""
+ALIGNMENT_SUFFIX = ".alignment.yaml"
 
 
 def harbour_name(spec: object) -> str | None:
@@ -107,13 +116,36 @@ def harbour_file(spec: object) -> Path | None:
     )
 
 
+def alignment_file(spec: object) -> Path | None:
+    """The alignment file of a raster harbour ``spec`` (``ravnkloa``: :data:`RAVNKLOA_ALIGNMENT`; a raster
+    ``NAME.yaml``: ``NAME.alignment.yaml`` beside it when it exists), else None."""
+    if harbour_name(spec) == "ravnkloa":
+        return RAVNKLOA_ALIGNMENT
+    if is_raster_path(spec):
+        p = Path(spec)  # type: ignore[arg-type]
+        beside = p.with_name(p.stem + ALIGNMENT_SUFFIX)
+        return beside if beside.is_file() else None
+    return None
+
+
+def harbour_alignment(spec: object) -> Alignment:
+    """The alignment of harbour ``spec`` to the scenario frame (identity for a layout, ``none``, a raster without one)."""
+    if isinstance(spec, LandRaster):
+        return spec.alignment
+    path = alignment_file(spec)
+    return IDENTITY if path is None else read_alignment(path)[0]
+
+
 def harbour_map(spec: object) -> HarbourLayout | LandRaster | None:
     """The 2-D map of a harbour ``spec``: a :class:`HarbourLayout` or :class:`LandRaster` as is,
     ``default`` → :data:`DEFAULT_LAYOUT`, ``none`` → None, ``ravnkloa`` or a raster path → its
-    :class:`LandRaster`. Both maps answer ``is_water(north, east)``."""
+    :class:`LandRaster`, aligned to the scenario frame (:func:`harbour_alignment`). Both maps answer
+    ``is_water(north, east)`` in the scenario frame."""
     if isinstance(spec, HarbourLayout | LandRaster):
         return spec
     if harbour_name(spec) == "default":
         return DEFAULT_LAYOUT
     path = harbour_file(spec)
-    return None if path is None else read_land_raster(path)
+    if path is None:
+        return None
+    return read_land_raster(path).aligned(harbour_alignment(spec))

@@ -7,29 +7,39 @@ row-major, 1 = water, 0 = land; row 0 the southern edge).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
 import yaml
 
 from seatwin.errors import InputError
+from seatwin.layout.alignment import IDENTITY, Alignment
 
 
 @dataclass(frozen=True)
 class LandRaster:
     """A land/water grid: ``water[r, c]`` True on water; cell (r, c) covers
-    north ``origin_north + r·res`` … ``+res`` and east ``origin_east + c·res`` … ``+res``."""
+    north ``origin_north + r·res`` … ``+res`` and east ``origin_east + c·res`` … ``+res`` in the
+    raster's own frame. ``alignment`` takes a scenario-frame point into that frame
+    (:class:`~seatwin.layout.alignment.Alignment`); :meth:`is_water` takes scenario-frame points."""
 
     water: np.ndarray
     origin_north: float
     origin_east: float
     resolution: float = 1.0
     source: str = "<memory>"
+    alignment: Alignment = IDENTITY
+
+    def aligned(self, alignment: Alignment) -> LandRaster:
+        """The same grid placed in a scenario frame by ``alignment``."""
+        return replace(self, alignment=alignment)
 
     def is_water(self, north: np.ndarray, east: np.ndarray, outside: bool = True) -> np.ndarray:
-        """True where (north, east) falls on a water cell; points outside the grid count as ``outside``
-        (water for building a harbour, land for masking sensor returns)."""
+        """True where scenario-frame (north, east) falls on a water cell; points outside the grid count
+        as ``outside`` (water for building a harbour, land for masking sensor returns)."""
+        if not self.alignment.is_identity:
+            north, east = self.alignment.to_map(north, east)
         r = np.floor((np.asarray(north, float) - self.origin_north) / self.resolution).astype(np.int64)
         c = np.floor((np.asarray(east, float) - self.origin_east) / self.resolution).astype(np.int64)
         inside = (r >= 0) & (r < self.water.shape[0]) & (c >= 0) & (c < self.water.shape[1])

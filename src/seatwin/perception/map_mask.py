@@ -4,7 +4,8 @@
   vectorised.
 * :class:`RasterMask` — a land/water raster in the Ravnkloa base-map format, read by
   :func:`seatwin.layout.read_land_raster`. Points outside the raster count as land.
-* :func:`load_mask` — ``harbour``, ``none``, ``ravnkloa`` or a raster's ``.yaml``/``.bin`` path.
+* :func:`load_mask` — ``harbour``, ``none``, ``ravnkloa`` or a raster's ``.yaml``/``.bin`` path; a raster
+  comes with its harbour's alignment to the scenario frame (:func:`seatwin.layout.harbour_map`).
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from seatwin.errors import InputError
 from seatwin.layout import DEFAULT_LAYOUT, HarbourLayout
 from seatwin.layout.raster import LandRaster, read_land_raster
 
@@ -62,10 +64,15 @@ WaterMask = NoMask | LayoutMask | RasterMask
 def load_mask(spec: str | Path | None) -> WaterMask:
     """``harbour``/``default`` (built-in layout), ``none``, ``ravnkloa`` (the real raster, found by
     :func:`seatwin.layout.harbours.harbour_file`), or a raster path (``.yaml`` or ``.bin``)."""
-    from seatwin.layout.harbours import harbour_file, harbour_name
+    from seatwin.layout.harbours import harbour_map, harbour_name
 
     if spec is None or harbour_name(str(spec)) == "none":
         return NoMask()
     if harbour_name(str(spec)) == "default":
         return LayoutMask()
-    return RasterMask.load(harbour_file(str(spec)) or spec)
+    # The raster with the harbour's alignment to the scenario frame (ravnkloa: the Gemini scenarios'),
+    # the same map the world was built from.
+    raster = harbour_map(str(spec))
+    if not isinstance(raster, LandRaster):
+        raise InputError(str(spec), "expected a land raster .yaml/.bin, 'harbour', 'none' or 'ravnkloa'")
+    return RasterMask(raster)

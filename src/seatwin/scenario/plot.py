@@ -61,7 +61,18 @@ def _draw_raster(ax: Axes, raster: LandRaster) -> None:
         raster.origin_north,
         raster.origin_north + h * raster.resolution,
     )
-    ax.imshow(raster.water, origin="lower", extent=extent, cmap=ListedColormap([LAND, WATER]), vmin=0, vmax=1, zorder=0)
+    im = ax.imshow(raster.water, origin="lower", extent=extent, cmap=ListedColormap([LAND, WATER]), vmin=0, vmax=1, zorder=0)
+    al = raster.alignment
+    if not al.is_identity:  # the raster placed in the scenario frame (plot x = east, y = north)
+        from matplotlib.transforms import Affine2D
+
+        place = (
+            Affine2D()
+            .translate(-(al.centre_east + al.shift_east), -(al.centre_north + al.shift_north))
+            .rotate_deg(al.rotation_deg)
+            .translate(al.centre_east, al.centre_north)
+        )
+        im.set_transform(place + ax.transData)
 
 
 def plot_scenario(scenario: Scenario, out: str | os.PathLike[str], tick_s: float = 10.0) -> Path:

@@ -126,6 +126,9 @@ def simulate_scenario(
     scenario = seeded(scenario, settings)
     sensors = scenario_sensors(scenario, settings)
     harbour = run_harbour(scenario, settings)
+    from seatwin.scenario.on_water import warn_on_land
+
+    warn_on_land(scenario, harbour)
     # The run's scenario.yaml names the harbour the run was simulated in.
     scenario = dataclasses.replace(scenario, environment={**scenario.environment, "harbour": harbour})
     try:

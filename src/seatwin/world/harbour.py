@@ -98,7 +98,8 @@ def harbour_from_raster(
     building_height: float = 10.0,
 ) -> list[WorldObject]:
     """Land cells extruded to ``quay_height``; with ``building_setback``, land at least that far
-    from the water is raised further to ``building_height`` (a crude city block)."""
+    from the water is raised further to ``building_height`` (a crude city block). The blocks are built
+    in the raster's frame and placed in the scenario frame by its alignment."""
     land = ~raster.water
     objs: list[WorldObject] = []
     quay = _boxes(raster, land, quay_height, QUAY_BASE)
@@ -111,6 +112,10 @@ def harbour_from_raster(
         blocks = _boxes(raster, land & (dist >= building_setback), building_height, quay_height)
         if blocks is not None:
             objs.append(WorldObject("buildings", "building", blocks, REFLECTIVITY["building"]))
+    if not raster.alignment.is_identity:
+        rot, offset = raster.alignment.from_map_matrix()
+        for o in objs:
+            o.mesh.vertices = np.asarray(o.mesh.vertices) @ rot.T + offset
     return objs
 
 

@@ -1,0 +1,58 @@
+"""``seatwin harbour``: a raster harbour's alignment to the scenario frame (fit it to recordings)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import typer
+
+
+def register(app: typer.Typer) -> None:
+    group = typer.Typer(help="Harbours: fit a land raster's alignment to scenarios' vessels.", no_args_is_help=True)
+    app.add_typer(group, name="harbour")
+
+    @group.command("fit-alignment")
+    def fit_cmd(
+        scenarios: list[str] = typer.Argument(..., help="Scenario files (Gemini .csv, .yaml) whose vessels sail on water."),
+        harbour: str = typer.Option("ravnkloa", "--harbour", help="The raster harbour: 'ravnkloa' or a land raster .yaml/.bin."),
+        out: Path | None = typer.Option(
+            None, "--out", metavar="FILE", help="Write the alignment and its provenance as YAML (e.g. NAME.alignment.yaml)."
+        ),
+        as_json: bool = typer.Option(False, "--json", help="Print the fit as JSON."),
+    ) -> None:
+        """Fit the harbour raster's rotation and shift so that every vessel of SCENARIO… is on water.
+
+        The alignment of a raster NAME.yaml is read from NAME.alignment.yaml beside it; the 'ravnkloa'
+        harbour's is shipped with seatwin (seatwin/layout/ravnkloa_alignment.yaml).
+        """
+        from seatwin.cli.output import check_output_file
+        from seatwin.layout.alignment import write_alignment
+        from seatwin.scenario.on_water import fit_harbour_alignment
+
+        if out is not None:
+            check_output_file(out, "out")
+        fit = fit_harbour_alignment(scenarios, harbour)
+        al = fit.alignment
+        if out is not None:
+            write_alignment(out, al, fit.provenance())
+        if as_json:
+            payload = {
+                "alignment": vars(al),
+                "rotation_interval_deg": list(fit.rotation_interval_deg),
+                "on_water_before": fit.on_water_before,
+                "on_water_after": fit.on_water_after,
+                "provenance": fit.provenance(),
+            }
+            typer.echo(json.dumps(payload, indent=2))
+            return
+        lo, hi = fit.rotation_interval_deg
+        typer.echo(
+            f"rotation {al.rotation_deg:+.2f}° about ({al.centre_north:.1f}, {al.centre_east:.1f}) m "
+            f"(consistent: {lo:+.2f}° … {hi:+.2f}°, worst vessel within {100 * fit.tolerance:.1f} % of its best), "
+            f"shift north {al.shift_north:+.2f} m, east {al.shift_east:+.2f} m"
+        )
+        for name, before in fit.on_water_before.items():
+            typer.echo(f"  {name}: on water {100 * before:.1f} % → {100 * fit.on_water_after[name]:.1f} %")
+        if out is not None:
+            typer.echo(f"written {out}")
