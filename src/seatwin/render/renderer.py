@@ -263,6 +263,12 @@ class SceneRenderer:
             vbo = ctx.buffer(static)
             self._static = (vbo, ctx.vertex_array(self.mesh_prog, [(vbo, *fmt)]))
         self._vessels: dict[str, tuple[Any, Any]] = {}
+        # Moored boats are part of the static mesh; their own buffers measure their pixels drawn alone.
+        self._moored: dict[str, tuple[Any, Any]] = {}
+        for m, o in zip(scene.static_meshes, scene.objects, strict=False):
+            if o.label == "moored_boat":
+                vbo = ctx.buffer(_flat_vertices(m.vertices, m.faces, object_colour(o.label, o.name), m.object_id))
+                self._moored[o.name] = (vbo, ctx.vertex_array(self.mesh_prog, [(vbo, *fmt)]))
         for name in scene.vessel_names:
             if name in self.exclude:
                 continue
@@ -341,8 +347,8 @@ class SceneRenderer:
     def render(self, t: float, rotation: ArrayLike, position: ArrayLike, solo: Sequence[str] = ()) -> RenderedFrame:
         """Render the scene at time ``t`` from a camera (optical frame ``rotation`` → world, centre ``position``).
 
-        ``solo``: vessels whose unoccluded pixel count (drawn alone) is also measured, by an
-        occlusion query (for the labels' visible fraction).
+        ``solo``: vessels (and moored boats, :attr:`seatwin.world.scene.Scene.moored_boats`) whose unoccluded
+        pixel count (drawn alone) is also measured, by an occlusion query (for the labels' visible fraction).
         """
         import moderngl
 
@@ -377,6 +383,9 @@ class SceneRenderer:
                 vao.render(moderngl.TRIANGLES)
         unoccluded: dict[str, int] = {}
         for name in solo:
+            if name in self._moored:
+                unoccluded[name] = self._solo_pixels(name, eye)
+                continue
             m = models.get(name)
             if m is None:
                 unoccluded[name] = 0
@@ -416,7 +425,7 @@ class SceneRenderer:
         import moderngl
 
         ctx = self.ctx
-        vao = self._vessels[name][1]
+        vao = (self._moored[name] if name in self._moored else self._vessels[name])[1]
         self.solo_fbo.use()
         self.solo_fbo.clear(depth=1.0)
         self._mat(self.mesh_prog, "model", model)
@@ -434,7 +443,7 @@ class SceneRenderer:
         self.set_distortion(None)
         for obj in (self.fbo, self.solo_fbo, self._colour, self._ids, self._depth, self._solo_depth, self._bg_vao, self._bg_vbo):
             obj.release()
-        for vbo, vao in ([self._static] if self._static else []) + list(self._vessels.values()):
+        for vbo, vao in ([self._static] if self._static else []) + list(self._vessels.values()) + list(self._moored.values()):
             vao.release()
             vbo.release()
         self.mesh_prog.release()

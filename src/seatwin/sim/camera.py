@@ -99,7 +99,7 @@ class CameraSensor:
         )
         if config.has_distortion:  # resampled on the GPU (the CPU reference: DistortionMap)
             self.renderer.set_distortion(*source_pixels(self.info.k, config.distortion, config.width, config.height))
-        self.targets = [n for n in scene.vessel_names if n != ownship]
+        self.labelled = [n for n in scene.vessel_names if n != ownship] + list(scene.moored_boats)
         self.timing = CameraTiming()
 
     def frame_times(self, t0: float, t1: float) -> NDArray[np.float64]:
@@ -131,7 +131,7 @@ class CameraSensor:
         for m in self.mounts:
             rot, centre = m.world_pose(float(pose.north), float(pose.east), float(pose.heading))
             before = r.timing.render_s, r.timing.readback_s, r.timing.distortion_s
-            f = r.render(t, rot, centre, solo=self.targets if self.config.labels else ())
+            f = r.render(t, rot, centre, solo=self.labelled if self.config.labels else ())
             self.timing.render_s += r.timing.render_s - before[0]
             self.timing.readback_s += r.timing.readback_s - before[1]
             self.timing.distortion_s += r.timing.distortion_s - before[2]

@@ -176,6 +176,11 @@ class Scene:
     def vessel_names(self) -> list[str]:
         return list(self.vessel_models)
 
+    @property
+    def moored_boats(self) -> dict[str, int]:
+        """The harbour's moored boats (static objects labelled ``moored_boat``): name → object id."""
+        return {o.name: i for i, o in enumerate(self.static_objects) if o.label == "moored_boat"}
+
     def pose(self, name: str, t: ArrayLike) -> Poses:
         """Pose of vessel ``name`` at time(s) ``t`` (heading unwrapped, not wrapped to ±π)."""
         if name not in self._tracks:

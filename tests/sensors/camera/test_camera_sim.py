@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from seatwin.layout import DEFAULT_LAYOUT
 from seatwin.recording import open_bag
 from seatwin.recording.images import image_to_array
 from seatwin.scenario.builtin import builtin_scenario
@@ -45,7 +46,8 @@ def test_bag_has_the_three_cameras_at_5_hz(run: Path) -> None:
         assert {"camera_left_optical_frame", "camera_front_optical_frame", "camera_right_optical_frame"} <= set(tf)
         labels = [m.msg for m in rec.messages("/camera/right/labels")]
         dets = [d for arr in labels for d in arr.detections]
-        assert dets and {d.id for d in dets} <= {"Havfruen", "Finn"}
+        moored = {m.name for m in DEFAULT_LAYOUT.moored_boats}
+        assert dets and {"Havfruen", "Finn"} & {d.id for d in dets} and {d.id for d in dets} <= {"Havfruen", "Finn"} | moored
         assert all(d.results[0].hypothesis.class_id == "vessel" and 0 < d.results[0].hypothesis.score <= 1 for d in dets)
 
 

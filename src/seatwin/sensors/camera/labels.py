@@ -150,13 +150,39 @@ def ground_truth_boxes(
     near: float = 0.08,
     min_visible_pixels: int = 1,
 ) -> list[BoxLabel]:
-    """Every vessel of ``scene`` in view at ``t`` (but ``exclude``) as a :class:`BoxLabel`.
+    """Every vessel of ``scene`` in view at ``t`` (but ``exclude``), moving or moored (the harbour's
+    :attr:`~seatwin.world.scene.Scene.moored_boats`), as a :class:`BoxLabel` (label ``vessel``).
 
     ``ids``: the camera's pinhole object-id image (−1 background); ``unoccluded``: each vessel's
     pixel count drawn alone (:attr:`seatwin.render.RenderedFrame.unoccluded`).
     """
     counts = np.bincount(ids.reshape(-1) + 1, minlength=len(scene.objects) + 1)
     c = np.asarray(position, float)
+    out = []
+    for name, oid, mesh, verts, ref in _posed_vessels(scene, t, exclude):
+        boxes = vessel_box(verts, mesh.edges_unique, rotation, c, k, d, width, height, near, faces=mesh.faces)
+        if boxes is None:
+            continue
+        full, clipped = boxes
+        trunc = truncation(full, clipped)
+        if clipped[2] <= clipped[0] or clipped[3] <= clipped[1]:
+            continue
+        vis = int(counts[oid + 1])
+        if vis < min_visible_pixels:
+            continue
+        alone = int(unoccluded.get(name, 0))
+        frac = min(vis / alone, 1.0) if alone > 0 else 0.0
+        dist = float(np.hypot(ref[0] - c[0], ref[1] - c[1]))
+        out.append(
+            BoxLabel(name, "vessel", oid, *(float(x) for x in clipped), float(trunc), float(frac), vis, dist)  # type: ignore[arg-type]
+        )
+    return out
+
+
+def _posed_vessels(scene: Any, t: float, exclude: tuple[str, ...]) -> list[tuple[str, int, Any, NDArray[np.float64], Any]]:
+    """(name, object id, mesh, world-frame vertices, (north, east) of its reference point) of every vessel at ``t``
+    (but ``exclude``; none outside its trajectory), then of every moored boat (its mesh is already in the world
+    frame; its reference point the middle of its extent)."""
     out = []
     for name in scene.vessel_names:
         if name in exclude:
@@ -168,21 +194,11 @@ def ground_truth_boxes(
         mesh = scene.vessel_models[name].mesh
         rot = yaw_matrix(float(pose.heading))
         verts = np.asarray(mesh.vertices, float) @ rot.T + [float(pose.north), float(pose.east), 0.0]
-        boxes = vessel_box(verts, mesh.edges_unique, rotation, c, k, d, width, height, near, faces=mesh.faces)
-        if boxes is None:
-            continue
-        full, clipped = boxes
-        trunc = truncation(full, clipped)
-        if clipped[2] <= clipped[0] or clipped[3] <= clipped[1]:
-            continue
-        oid = scene.vessel_ids[name]
-        vis = int(counts[oid + 1])
-        if vis < min_visible_pixels:
-            continue
-        alone = int(unoccluded.get(name, 0))
-        frac = min(vis / alone, 1.0) if alone > 0 else 0.0
-        dist = float(np.hypot(float(pose.north) - c[0], float(pose.east) - c[1]))
-        out.append(
-            BoxLabel(name, "vessel", oid, *(float(x) for x in clipped), float(trunc), float(frac), vis, dist)  # type: ignore[arg-type]
-        )
+        out.append((name, scene.vessel_ids[name], mesh, verts, (float(pose.north), float(pose.east))))
+    for name, oid in getattr(scene, "moored_boats", {}).items():
+        if name not in exclude:
+            mesh = scene.static_objects[oid].mesh
+            v = np.asarray(mesh.vertices, float)
+            mid = 0.5 * (v.min(axis=0) + v.max(axis=0))
+            out.append((name, oid, mesh, v, (float(mid[0]), float(mid[1]))))
     return out
