@@ -124,7 +124,8 @@ def test_a_gemini_csv_defaults_to_ravnkloa_and_sails_on_its_water(shared_data) -
     finn = next(v for v in sc.vessels if v.name == "Finn").trajectory
     assert water_fraction(finn.north, finn.east) < 0.75  # the default harbour's water: 0.73
     scene = Scene.from_scenario(sc)
-    assert [o.name for o in scene.static_objects] == ["land"]  # the raster's land, not the built-in quays
+    assert [o.name for o in scene.static_objects][0] == "land"  # the raster's land, not the built-in quays
+    assert {o.label for o in scene.static_objects[1:]} == {"moored_boat"}  # and the twin's moored boats
 
 
 def test_a_run_records_the_harbour_it_was_simulated_in(shared_data, tmp_path) -> None:

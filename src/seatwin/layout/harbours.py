@@ -13,11 +13,15 @@ it, if there is one (else none).
 from __future__ import annotations
 
 import os
+from dataclasses import fields, replace
 from pathlib import Path
+
+import numpy as np
+import yaml
 
 from seatwin.errors import InputError
 from seatwin.layout.alignment import IDENTITY, Alignment, read_alignment
-from seatwin.layout.model import DEFAULT_LAYOUT, HarbourLayout
+from seatwin.layout.model import DEFAULT_LAYOUT, HarbourLayout, MooredBoat
 from seatwin.layout.raster import LandRaster, read_land_raster
 
 HARBOUR_NAMES = ("default", "ravnkloa", "none")
@@ -31,6 +35,8 @@ RAVNKLOA_RASTER = Path("ravnkloa") / "ravnkloa_radar_base_map.yaml"
 """The Ravnkloa land raster, relative to the data folder."""
 _REPO_ROOT = Path(__file__).resolve().parents[3]
 RAVNKLOA_ALIGNMENT = Path(__file__).with_name("ravnkloa_alignment.yaml")
+RAVNKLOA_MOORED = Path(__file__).with_name("ravnkloa_moored.yaml")
+"""The Ravnkloa twin's moored boats (made up, in the raster's frame; see the file)."""
 """The Ravnkloa raster's alignment to the Gemini scenarios' frame, with its fit's provenance."""
 ALIGNMENT_SUFFIX = ".alignment.yaml"
 
@@ -148,4 +154,44 @@ def harbour_map(spec: object) -> HarbourLayout | LandRaster | None:
     path = harbour_file(spec)
     if path is None:
         return None
-    return read_land_raster(path).aligned(harbour_alignment(spec))
+    raster = read_land_raster(path).aligned(harbour_alignment(spec))
+    if harbour_name(spec) == "ravnkloa":
+        raster = replace(raster, moored_boats=read_moored_boats(RAVNKLOA_MOORED))
+    return raster
+
+
+def read_moored_boats(path: str | Path) -> tuple[MooredBoat, ...]:
+    """The ``moored_boats`` list of a YAML file (name, north, east, heading_deg, length, beam, height each)."""
+    p = Path(path)
+    try:
+        data = yaml.safe_load(p.read_text())
+    except (OSError, yaml.YAMLError) as exc:
+        raise InputError(p, f"cannot read the moored boats: {exc}") from exc
+    rows = data.get("moored_boats") if isinstance(data, dict) else None
+    if not isinstance(rows, list):
+        raise InputError(p, "expected a mapping with a list 'moored_boats'")
+    keys = [f.name for f in fields(MooredBoat)]
+    out = []
+    for i, row in enumerate(rows):
+        if not isinstance(row, dict) or set(row) != set(keys):
+            raise InputError(p, f"expected the keys {', '.join(keys)}", where=f"moored_boats[{i}]")
+        try:
+            out.append(MooredBoat(str(row["name"]), *(float(row[k]) for k in keys[1:])))
+        except (TypeError, ValueError):
+            raise InputError(p, "expected numbers for the position and size", where=f"moored_boats[{i}]") from None
+    return tuple(out)
+
+
+def harbour_moored_boats(spec: object) -> tuple[MooredBoat, ...]:
+    """The moored boats of harbour ``spec`` in the scenario frame (a name, a raster, a layout, or a run's water-mask
+    hint such as ``harbour``/``ravnkloa``); none for ``none``. Tracking comparisons treat them as don't-care regions."""
+    m = harbour_map(spec)
+    if m is None:
+        return ()
+    return m.moored_boats if isinstance(m, HarbourLayout) else m.moored()
+
+
+def moored_boat_positions(spec: object) -> np.ndarray:
+    """(n, 2) north, east [m] of the moored boats of harbour ``spec`` (:func:`harbour_moored_boats`)."""
+    boats = harbour_moored_boats(spec)
+    return np.array([[b.north, b.east] for b in boats], dtype=float).reshape(-1, 2)

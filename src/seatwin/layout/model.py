@@ -29,6 +29,9 @@ class Box:
 
 @dataclass(frozen=True)
 class MooredBoat:
+    """A boat moored in a harbour: its middle (north, east [m]), heading [deg, compass], length, beam and height
+    above the water [m]. Real, but without GNSS: tracking comparisons treat it as a don't-care region."""
+
     name: str
     north: float
     east: float

@@ -15,6 +15,7 @@ import yaml
 
 from seatwin.errors import InputError
 from seatwin.layout.alignment import IDENTITY, Alignment
+from seatwin.layout.model import MooredBoat
 
 
 @dataclass(frozen=True)
@@ -30,6 +31,16 @@ class LandRaster:
     resolution: float = 1.0
     source: str = "<memory>"
     alignment: Alignment = IDENTITY
+    moored_boats: tuple[MooredBoat, ...] = ()
+    """Boats moored in this harbour, in the raster's own frame (:meth:`moored` gives them in the scenario frame)."""
+
+    def moored(self) -> tuple[MooredBoat, ...]:
+        """The moored boats placed in the scenario frame by the alignment."""
+        out = []
+        for b in self.moored_boats:
+            n, e = self.alignment.from_map(b.north, b.east)
+            out.append(replace(b, north=float(n), east=float(e), heading_deg=b.heading_deg - self.alignment.rotation_deg))
+        return tuple(out)
 
     def aligned(self, alignment: Alignment) -> LandRaster:
         """The same grid placed in a scenario frame by ``alignment``."""

@@ -6,12 +6,14 @@ water reflects the laser away), which the sensors model by cutting rays at the s
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 import trimesh
 
 from seatwin.errors import InputError
 from seatwin.geo.frames import yaw_matrix
-from seatwin.layout import DEFAULT_LAYOUT, HarbourLayout, LandRaster, harbour_map
+from seatwin.layout import DEFAULT_LAYOUT, HarbourLayout, LandRaster, MooredBoat, harbour_map
 from seatwin.world.objects import WorldObject
 from seatwin.world.shapes import block, merge
 from seatwin.world.vessels import REFLECTIVITY, generic
@@ -42,7 +44,13 @@ def harbour_from_layout(layout: HarbourLayout = DEFAULT_LAYOUT) -> list[WorldObj
                 b.name, "building", block(b.north_min, b.north_max, b.east_min, b.east_max, b.top, base), REFLECTIVITY["building"]
             )
         )
-    for m in layout.moored_boats:
+    return objs + moored_objects(layout.moored_boats)
+
+
+def moored_objects(boats: Sequence[MooredBoat]) -> list[WorldObject]:
+    """Each moored boat as a generic hull of its size, posed in the world."""
+    objs = []
+    for m in boats:
         boat = generic(m.length, m.beam, m.height, name=m.name).mesh.copy()
         boat.vertices = boat.vertices @ yaw_matrix(np.radians(m.heading_deg)).T + [m.north, m.east, 0.0]
         objs.append(WorldObject(m.name, "moored_boat", boat, REFLECTIVITY["moored_boat"]))
@@ -116,7 +124,7 @@ def harbour_from_raster(
         rot, offset = raster.alignment.from_map_matrix()
         for o in objs:
             o.mesh.vertices = np.asarray(o.mesh.vertices) @ rot.T + offset
-    return objs
+    return objs + moored_objects(raster.moored())
 
 
 def build_harbour(spec: object = "default") -> list[WorldObject]:
