@@ -112,3 +112,49 @@ def test_real_ravnkloa_raster(shared_data) -> None:
     n, e = raster.origin_north + r + 0.5, raster.origin_east + c + 0.5
     h = caster_of(objs).cast([[n, e, -10.0]], [[0.0, 0.0, 1.0]])
     assert h.range[0] == pytest.approx(10.0 - 1.8, abs=1e-3)
+
+
+def test_blocks_builds_the_same_triangles_as_one_block_each() -> None:
+    from seatwin.world.shapes import block, blocks, merge
+
+    ext = np.array([[0.0, 1.0, 0.0, 2.0], [5.0, 7.0, -3.0, -1.0], [1.5, 9.0, 2.0, 3.0]])
+    a, b = merge([block(*e, 3.0, -2.0) for e in ext]), blocks(ext, 3.0, -2.0)
+    assert np.array_equal(a.vertices, b.vertices) and np.array_equal(a.faces, b.faces)
+    with pytest.raises(ValueError, match="empty blocks"):
+        blocks(np.array([[0.0, 0.0, 0.0, 1.0]]), 1.0)
+
+
+def test_a_raster_harbour_has_a_skyline_behind_its_quay_walls(tmp_path) -> None:
+    from seatwin.world.harbour import SHORE_SKYLINE, Skyline
+
+    water = np.ones((200, 200), bool)
+    water[:, :120] = False  # land west of east = 20 (origin −100, −100)
+    raster = read_land_raster(write_raster(tmp_path, water, ox=-100.0, oy=-100.0))
+    objs = build_harbour(str(tmp_path / "map.yaml"))
+    assert [o.label for o in objs] == ["quay", "building"]
+    c = caster_of(objs)
+    sk = SHORE_SKYLINE
+    # Westwards 1 m above the water: the quay wall at the water's edge (east 20).
+    h = c.cast([[0.5, 60.0, -1.0]], [[0.0, -1.0, 0.0]])
+    assert h.range[0] == pytest.approx(40.0, abs=1e-3) and objs[h.object_id[0]].label == "quay"
+    # Westwards 5 m above the water, along many norths: building fronts one setback behind the quay,
+    # except where a street runs inland.
+    norths = np.arange(-95.0, 95.0, 0.5) + 0.25
+    hits = c.cast(
+        np.c_[norths, np.full_like(norths, 60.0), np.full_like(norths, -5.0)], np.tile([0.0, -1.0, 0.0], (len(norths), 1))
+    )
+    front = np.abs(hits.range - (40.0 + sk.setback_m)) < 1e-3
+    assert 0.6 < front.mean() < 0.95  # blocks and streets
+    # Down onto the blocks: their tops are the skyline's heights, several of them.
+    east = 20.0 - sk.setback_m - 5.0
+    down = c.cast(
+        np.c_[norths, np.full_like(norths, east), np.full_like(norths, -50.0)], np.tile([0.0, 0.0, 1.0], (len(norths), 1))
+    )
+    tops = {round(float(x), 3) for x in 50.0 - down.range[np.isfinite(down.range)]}
+    assert DEFAULT_LAYOUT.quay_height in tops and len(tops & set(sk.heights_m)) >= 3
+    # No buildings deeper than the band; the same raster gives the same skyline.
+    deep = c.cast([[0.25, 20.0 - sk.setback_m - sk.depth_m - 3.0, -50.0]], [[0.0, 0.0, 1.0]])
+    assert 50.0 - deep.range[0] == pytest.approx(DEFAULT_LAYOUT.quay_height, abs=1e-3)
+    again = build_harbour(str(tmp_path / "map.yaml"))
+    assert np.array_equal(again[1].mesh.vertices, objs[1].mesh.vertices)
+    assert harbour_from_raster(raster, skyline=Skyline(heights_m=(5.0,)))[1].mesh.vertices[:, 2].min() == pytest.approx(-5.0)

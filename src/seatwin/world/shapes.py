@@ -20,6 +20,22 @@ def block(x_min: float, x_max: float, y_min: float, y_max: float, top: float, ba
     return box
 
 
+def blocks(extents: np.ndarray, top: float, base: float = 0.0) -> trimesh.Trimesh:
+    """Many axis-aligned boxes at once, rows of ``extents`` = (x_min, x_max, y_min, y_max), all from height
+    ``base`` to ``top``: the same triangles as :func:`merge` of one :func:`block` each, built without a
+    mesh per box."""
+    ext = np.asarray(extents, float).reshape(-1, 4)
+    if not len(ext) or not ((ext[:, 1] > ext[:, 0]).all() and (ext[:, 3] > ext[:, 2]).all() and top > base):
+        raise ValueError(f"empty blocks: {len(ext)} extents, height {base}..{top}")
+    unit = trimesh.creation.box(extents=[1.0, 1.0, 1.0])  # vertices at ±½, outward winding
+    v0, f0 = np.asarray(unit.vertices), np.asarray(unit.faces)
+    size = np.c_[ext[:, 1] - ext[:, 0], ext[:, 3] - ext[:, 2], np.full(len(ext), top - base)]
+    mid = np.c_[(ext[:, 0] + ext[:, 1]) / 2, (ext[:, 2] + ext[:, 3]) / 2, np.full(len(ext), -(top + base) / 2)]
+    verts = v0[None, :, :] * size[:, None, :] + mid[:, None, :]
+    faces = f0[None, :, :] + (len(v0) * np.arange(len(ext)))[:, None, None]
+    return trimesh.Trimesh(verts.reshape(-1, 3), faces.reshape(-1, 3), process=False)
+
+
 def prism(outline: Sequence[tuple[float, float]], top: float, base: float = 0.0) -> trimesh.Trimesh:
     """The convex hull of a horizontal ``outline`` (x, y) extruded from ``base`` to ``top``."""
     xy = np.asarray(outline, dtype=float)
