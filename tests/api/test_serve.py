@@ -199,4 +199,4 @@ def test_serve_renders_the_camera_rig(tmp_path):
         images = list(bag.images("/camera/front/image_raw"))
         labels = [m.msg for m in bag.messages("/camera/front/labels")]
     assert images[0].pixels.shape[:2] == (512, 612) and np.ptp(images[0].pixels) > 50  # sky, sea and a vessel
-    assert [d.id for d in labels[0].detections] == ["Havfruen"]
+    assert [d.id for d in labels[0].detections] == ["Havfruen", "moored_trawler"]  # a moored boat in view is labelled too
