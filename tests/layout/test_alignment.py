@@ -159,6 +159,7 @@ def test_every_gemini_vessel_is_on_water_after_alignment(shared_data) -> None:
     assert worst_before < 0.75
 
 
+@pytest.mark.slow
 def test_refit_on_the_gemini_scenarios_reproduces_the_shipped_alignment(shared_data) -> None:
     from seatwin.scenario.on_water import fit_harbour_alignment
 
@@ -187,6 +188,7 @@ def test_a_vessel_on_land_is_warned_about_by_name_and_time(tmp_path) -> None:
         assert warn_on_land(sc, "atlantis") == []  # an unknown harbour: simulating it says so
 
 
+@pytest.mark.slow
 def test_cli_fit_alignment_writes_a_file_the_harbour_then_uses(tmp_path, capsys) -> None:
     from seatwin.cli.main import run
     from seatwin.scenario.builtin import builtin_scenario

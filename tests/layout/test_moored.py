@@ -6,6 +6,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from seatwin.errors import InputError
 from seatwin.layout import DEFAULT_LAYOUT, LandRaster, harbour_map, harbour_moored_boats, moored_boat_positions
@@ -57,6 +59,7 @@ def test_bad_moored_boat_files(tmp_path) -> None:
         read_moored_boats(p)
 
 
+@pytest.mark.slow
 def test_ravnkloa_moored_boats_lie_on_water_along_a_quay(shared_data) -> None:
     from scipy.ndimage import distance_transform_edt
 
@@ -82,3 +85,38 @@ def test_ravnkloa_moored_boats_lie_on_water_along_a_quay(shared_data) -> None:
         assert min(np.hypot(*(p - [b.north, b.east]).T).min() for p in paths) > 10.0  # clear of every Gemini vessel
     sc = load_scenario(shared_data / "gemini-scenarios" / "Scenario6.csv")
     assert set(Scene.from_scenario(sc).moored_boats) == {b.name for b in boats}
+
+
+_values = st.one_of(
+    st.none(), st.booleans(), st.integers(), st.floats(allow_nan=True), st.text(max_size=5), st.lists(st.integers(), max_size=2)
+)
+
+
+@settings(max_examples=80, deadline=None)
+@given(
+    st.one_of(
+        st.text(max_size=60),
+        st.dictionaries(
+            st.sampled_from(["moored_boats", "rotation_deg", "shift_east", "x"]),
+            _values
+            | st.lists(
+                st.dictionaries(st.sampled_from(["name", "north", "east", "heading_deg", "length", "beam", "height"]), _values),
+                max_size=2,
+            ),
+            max_size=3,
+        ),
+    )
+)
+def test_hostile_harbour_files_are_read_or_refused_with_an_input_error(tmp_path_factory, content) -> None:
+    """Any file content: the alignment and moored-boat readers return data or raise one InputError."""
+    import yaml
+
+    from seatwin.layout.alignment import read_alignment
+
+    p = tmp_path_factory.mktemp("h") / "f.yaml"
+    p.write_text(content if isinstance(content, str) else yaml.safe_dump(content))
+    for reader in (read_alignment, read_moored_boats):
+        try:
+            reader(p)
+        except InputError as exc:
+            assert str(p) in str(exc)

@@ -51,6 +51,7 @@ def _corners(north: float, east: float, heading: float, length: float, beam: flo
     return np.asarray(out)
 
 
+@pytest.mark.slow
 def test_every_visible_vessel_moving_or_moored_has_a_label(camera_rig: tuple) -> None:
     sc, scene, cfg, info, r = camera_rig
     own = sc.ownship.name
