@@ -1,7 +1,8 @@
 """Plot a scenario's tracks like thesis Fig. 3.11: circles at the start, stars at the end.
 
 East is to the right and north up (a map). In the default harbour the water outline, the
-piers and the moored boats are drawn under the tracks; in a raster harbour (``ravnkloa``) its land.
+piers and the moored boats are drawn under the tracks; in a raster harbour (``ravnkloa``) its land, placed
+by the harbour's alignment, and its moored boats.
 """
 
 from __future__ import annotations
@@ -14,11 +15,13 @@ import numpy as np
 
 from seatwin.errors import InputError
 from seatwin.geo.frames import yaw_matrix
-from seatwin.layout import DEFAULT_LAYOUT, HarbourLayout, LandRaster
+from seatwin.layout import DEFAULT_LAYOUT, HarbourLayout, LandRaster, MooredBoat
 from seatwin.scenario.model import Role, Scenario
 from seatwin.scenario.summary import scenario_harbour_map, water_fraction
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from matplotlib.axes import Axes
 
 LAND = "#d9d2c3"
@@ -26,7 +29,7 @@ WATER = "#e3f0fa"
 
 
 def _draw_harbour(ax: Axes, layout: HarbourLayout) -> None:
-    from matplotlib.patches import Polygon, Rectangle
+    from matplotlib.patches import Rectangle
 
     w, n0, n1, depth = layout.half_width, layout.north_min, layout.north_max, layout.land_depth
     ax.add_patch(Rectangle((-w, n0), 2 * w, n1 - n0, facecolor=WATER, edgecolor="#5b8db8", lw=1.0, zorder=0))
@@ -44,7 +47,13 @@ def _draw_harbour(ax: Axes, layout: HarbourLayout) -> None:
                 zorder=1,
             )
         )
-    for boat in layout.moored_boats:
+    _draw_moored(ax, layout.moored_boats)
+
+
+def _draw_moored(ax: Axes, boats: Sequence[MooredBoat]) -> None:
+    from matplotlib.patches import Polygon
+
+    for boat in boats:
         rot = yaw_matrix(np.radians(boat.heading_deg))[:2, :2]  # body (forward, starboard) → (north, east)
         corners = [rot @ (a * boat.length / 2, b * boat.beam / 2) for a, b in ((1, 1), (1, -1), (-1, -1), (-1, 1))]
         xy = [(boat.east + c[1], boat.north + c[0]) for c in corners]
@@ -73,6 +82,7 @@ def _draw_raster(ax: Axes, raster: LandRaster) -> None:
             .translate(al.centre_east, al.centre_north)
         )
         im.set_transform(place + ax.transData)
+    _draw_moored(ax, raster.moored())
 
 
 def plot_scenario(scenario: Scenario, out: str | os.PathLike[str], tick_s: float = 10.0) -> Path:
