@@ -211,3 +211,18 @@ def test_cli_fit_alignment_writes_a_file_the_harbour_then_uses(tmp_path, capsys)
         assert harbour_map(str(path)).is_water(v.trajectory.north, v.trajectory.east).mean() >= 0.995
     assert run(["harbour", "fit-alignment", str(scen), "--harbour", "default"]) == 2
     assert "not a land raster" in capsys.readouterr().err
+
+
+def test_scenario_info_warns_of_a_vessel_on_land_in_one_line(tmp_path, capsys) -> None:
+    from seatwin.cli.main import run
+    from seatwin.scenario.builtin import builtin_scenario
+    from seatwin.scenario.load import save_scenario
+
+    sc = builtin_scenario("ferry_crossing")
+    _raster_files(tmp_path, _channel_raster(0.0), None)  # water only for |east| < 20 m
+    sc.environment["harbour"] = str(tmp_path / "m.yaml")
+    path, _ = save_scenario(sc, tmp_path / "s.yaml")
+    assert run(["scenario", "info", str(path)]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert err and all(line.startswith("seatwin: warning: ") and "is on land in harbour" in line for line in err)
+    assert any("'milliAmpere'" in line or "'Havfruen'" in line or "'Finn'" in line for line in err)

@@ -59,11 +59,14 @@ def register(app: typer.Typer) -> None:
         as_json: bool = typer.Option(False, "--json", help="Print the summary as JSON."),
         date: str | None = typer.Option(None, "--date", help=DATE_HELP),
     ) -> None:
-        """Summarise a scenario: vessels, span, rate, speeds and closest approaches."""
+        """Summarise a scenario: vessels, span, rate, speeds, closest approaches; warn of vessels on land."""
         from seatwin.scenario.load import load_scenario
+        from seatwin.scenario.on_water import warn_on_land
         from seatwin.scenario.summary import scenario_summary
 
-        summary = scenario_summary(load_scenario(spec, date=_date(date)))
+        sc = load_scenario(spec, date=_date(date))
+        warn_on_land(sc, sc.environment.get("harbour", "default"))
+        summary = scenario_summary(sc)
         if as_json:
             typer.echo(json.dumps(summary, indent=2, ensure_ascii=False))
             return
