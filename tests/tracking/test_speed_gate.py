@@ -88,7 +88,8 @@ def test_a_boat_at_about_vmax_keeps_its_track(speed: float) -> None:
 def test_every_preset_has_the_gate_and_a_file_can_turn_it_off(tmp_path) -> None:
     for name in ("synthetic", "real", "joyride", "ravnkloa"):
         cfg = load_tuning(name)
-        assert (cfg.speed_gate_sigma, cfg.speed_gate_margin, cfg.speed_gate_limit, cfg.speed_gate_scans) == (3.0, 1.0, 2.0, 3)
+        margin = 3.0 if name == "joyride" else 1.0  # the joyride radar's velocity estimates are noisier
+        assert (cfg.speed_gate_sigma, cfg.speed_gate_margin, cfg.speed_gate_limit, cfg.speed_gate_scans) == (3.0, margin, 2.0, 3)
     f = tmp_path / "off.yaml"
     f.write_text("base: real\nspeed_gate_sigma: null\n")
     assert load_tuning(str(f)).speed_gate_sigma is None
