@@ -21,6 +21,12 @@ def _jumpy_clutter(n: int = 120, seed: int = 0) -> np.ndarray:
     return spot + rng.normal(0.0, 3.0, (n, 2))
 
 
+def _sawtooth(n: int = 120) -> np.ndarray:
+    """Clutter that drifts 40 m along a quay at 2 m/s, jumps back to its start, and again (a track handed
+    along a row of moored boats): 240 m of bounded steps, yet it never gets more than 40 m away."""
+    return np.column_stack([2.0 * (np.arange(n) % 20), np.zeros(n)])
+
+
 def _quay(n: int = 120, seed: int = 1) -> np.ndarray:
     """A stationary quay track with 4 m of jitter (its path length grows ~5 m a scan; it goes nowhere)."""
     return np.random.default_rng(seed).normal(0.0, 4.0, (n, 2))
@@ -41,6 +47,7 @@ def test_sustained_motion_ignores_jumps_and_jitter() -> None:
     assert extent > 200.0  # the old 200 m extent test would call it a vessel
     assert sustained_motion(t, *clutter.T) < 30.0
     assert sustained_motion(t, *_quay().T) < 30.0
+    assert sustained_motion(t, *_sawtooth().T) == pytest.approx(38.0)
     boat = _boat()
     assert sustained_motion(t, *boat.T) == pytest.approx(np.hypot(*(boat - boat[0]).T).max(), abs=1e-9)
     assert sustained_motion(t, *_boat(jump_at=60).T) > 300.0  # a boat whose track jumps once still moved
@@ -62,7 +69,7 @@ def _tracks(paths: list[np.ndarray], t: np.ndarray) -> Tracks:
 def test_the_rule_accepts_boats_and_not_jumpy_or_stationary_clutter() -> None:
     t = 100.0 + np.arange(120, dtype=float)
     data = JoyrideData(t, [np.empty((0, 2))] * len(t), np.full((len(t), 4), AWAY_M), np.zeros((len(t), 4)))
-    tracks = _tracks([_jumpy_clutter(), _quay(), _boat(), _boat(jump_at=60, seed=3)], t)
+    tracks = _tracks([_jumpy_clutter(), _quay(), _sawtooth(), _boat(), _boat(jump_at=60, seed=3)], t)
     vessels = untruthed_vessels(tracks, data, gate_m=60.0)
     assert len(vessels) == 2
     starts = sorted(round(float(v[0, 3])) for v in vessels.values())  # east of each accepted track's first row
