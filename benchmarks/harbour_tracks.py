@@ -1,6 +1,6 @@
 """Tracks in the real harbour: quay ghosts, tracks on land, impossible speeds, and the don't-care rule (issue 21).
 
-    .venv/bin/python benchmarks/harbour_tracks.py [--duration S] [--data ../shared/data] [--tuning-radar NAME]
+    .venv/bin/python benchmarks/harbour_tracks.py [--duration S] [--data ../shared/data] [--ravnkloa-only]
 
 Part 1, the four Gemini scenarios (``gemini-scenarios/Scenario{3..6}.csv``, whole, or the first
 ``--duration`` seconds of each): each is simulated in its own harbour (Ravnkloa raster) with lidar
