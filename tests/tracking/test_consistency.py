@@ -41,6 +41,7 @@ def _nees(kind: MeasurementKind, clutter_mean: float, seed: int) -> tuple[list[f
         # The random-walk targets reach 10–20 m/s, beyond the default v_max: no speed gate here
         # (tests/tracking/test_speed_gate.py tests it).
         speed_gate_sigma=None,
+        speed_gate_scans=None,
         sensors={
             "radar": dict(
                 r_range=9.0, r_bearing=2.5e-5, r_cartesian=9.0, p_detect=0.95, clutter_density=max(clutter_mean, 1e-3) / 1200**2

@@ -34,7 +34,8 @@ def register(app: typer.Typer) -> None:
             "--tuning",
             metavar="NAME|FILE",
             help=(
-                "Tracker tuning: a preset (synthetic, real, joyride — thesis Tables 5.1/5.2 and the joyride radar) or "
+                "Tracker tuning: a preset (synthetic, real, joyride, ravnkloa — thesis Tables 5.1/5.2, the joyride and "
+                "Ravnkloa radars; real-thesis: the thesis's tracker without speed gate or land rule) or "
                 "a YAML/JSON file. Default: the one the recording's manifest suggests, else 'real'."
             ),
         ),

@@ -6,11 +6,16 @@
   :func:`seatwin.layout.read_land_raster`. Points outside the raster count as land.
 * :func:`load_mask` — ``harbour``, ``none``, ``ravnkloa`` or a raster's ``.yaml``/``.bin`` path; a raster
   comes with its harbour's alignment to the scenario frame (:func:`seatwin.layout.harbour_map`).
+
+Every mask also answers ``clear_of_land(north, east, margin)``: on water and farther than ``margin``
+metres (per point) from land — the land dilated, which drops returns from a vertical quay face at the
+water's edge and radar echoes of a quay smeared into the water by the beam.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -27,6 +32,14 @@ class NoMask:
     def is_water(self, north: ArrayLike, east: ArrayLike) -> NDArray[np.bool_]:
         return np.ones(np.broadcast(np.asarray(north), np.asarray(east)).shape, dtype=bool)
 
+    def clear_of_land(self, north: ArrayLike, east: ArrayLike, margin: ArrayLike) -> NDArray[np.bool_]:
+        """No land: everything."""
+        return self.is_water(north, east)
+
+
+RING = 16
+"""Points on the circle of radius ``margin`` that :meth:`LayoutMask.clear_of_land` checks around a point."""
+
 
 @dataclass(frozen=True)
 class LayoutMask:
@@ -37,12 +50,23 @@ class LayoutMask:
     def is_water(self, north: ArrayLike, east: ArrayLike) -> NDArray[np.bool_]:
         return np.asarray(self.layout.is_water(north, east), dtype=bool)
 
+    def clear_of_land(self, north: ArrayLike, east: ArrayLike, margin: ArrayLike) -> NDArray[np.bool_]:
+        """On water, and so are :data:`RING` points at ``margin`` [m] around (land narrower than the gap
+        between those points can slip through)."""
+        n, e, m = np.broadcast_arrays(np.asarray(north, float), np.asarray(east, float), np.asarray(margin, float))
+        out = self.is_water(n, e).copy()
+        for k in range(RING):
+            a = 2.0 * math.pi * k / RING
+            out &= self.is_water(n + m * math.cos(a), e + m * math.sin(a))
+        return out
+
 
 @dataclass(frozen=True)
 class RasterMask:
     """A land/water raster (:class:`seatwin.layout.LandRaster`) as a mask: outside the raster is land."""
 
     raster: LandRaster
+    _distance: list[NDArray[np.float64]] = field(default_factory=list, compare=False, repr=False, hash=False)
 
     @classmethod
     def load(cls, path: str | Path) -> RasterMask:
@@ -56,6 +80,29 @@ class RasterMask:
 
     def is_water(self, north: ArrayLike, east: ArrayLike) -> NDArray[np.bool_]:
         return self.raster.is_water(north, east, outside=False)
+
+    def land_distance(self) -> NDArray[np.float64]:
+        """(rows, cols) distance [m] from each cell's centre to the nearest land cell's centre (0 on land;
+        outside the raster counts as land). Computed once."""
+        if not self._distance:
+            from scipy.ndimage import distance_transform_edt
+
+            water = np.pad(self.raster.water, 1, constant_values=False)
+            self._distance.append(np.asarray(distance_transform_edt(water), float)[1:-1, 1:-1] * self.raster.resolution)
+        return self._distance[0]
+
+    def clear_of_land(self, north: ArrayLike, east: ArrayLike, margin: ArrayLike) -> NDArray[np.bool_]:
+        """On a water cell farther than ``margin`` [m] from every land cell (centre to centre)."""
+        r = self.raster
+        n, e, m = np.broadcast_arrays(np.asarray(north, float), np.asarray(east, float), np.asarray(margin, float))
+        if not r.alignment.is_identity:  # scenario frame -> the raster's own frame, as is_water does
+            n, e = (np.asarray(v, float) for v in r.alignment.to_map(n, e))
+        i = np.floor((n - r.origin_north) / r.resolution).astype(np.int64)
+        j = np.floor((e - r.origin_east) / r.resolution).astype(np.int64)
+        inside = (i >= 0) & (i < r.water.shape[0]) & (j >= 0) & (j < r.water.shape[1])
+        out = np.zeros(n.shape, dtype=bool)
+        out[inside] = self.land_distance()[i[inside], j[inside]] > m[inside]
+        return out
 
 
 WaterMask = NoMask | LayoutMask | RasterMask

@@ -21,6 +21,7 @@ from seatwin.settings import Settings, validated
 
 if TYPE_CHECKING:
     from seatwin.evaluation import Tracks
+    from seatwin.perception.map_mask import WaterMask
     from seatwin.perception.measurements import Scan
     from seatwin.tracking import TrackerConfig
 
@@ -35,7 +36,7 @@ class TrackOptions(Settings):
     )
     tuning: str | None = Field(
         None,
-        description="Tracker tuning: a preset (synthetic, real, joyride, ravnkloa) or a YAML/JSON file "
+        description="Tracker tuning: a preset (synthetic, real, real-thesis, joyride, ravnkloa) or a YAML/JSON file "
         "(default: the recording's suggestion, else 'real').",
     )
     map_spec: str | None = Field(
@@ -81,8 +82,10 @@ def track_scans(
     agent: str = "jipda",
     source: str = "<scans>",
     on_scan: Callable[[Scan], None] | None = None,
+    water: WaterMask | None = None,
 ) -> Tracks:
-    """Run a fresh ``agent`` (``jipda`` or ``gnn``) with ``tuning`` (config, preset name or file) over ``scans``."""
+    """Run a fresh ``agent`` (``jipda`` or ``gnn``) with ``tuning`` (config, preset name or file) over ``scans``;
+    ``water``: the map's water mask, for the tuning's rule on tracks over land (``land_scans``)."""
     import numpy as np
 
     from seatwin.evaluation import Tracks
@@ -97,7 +100,7 @@ def track_scans(
 
         raise ParameterError("agent", f"expected one of {', '.join(AGENTS)}, got {agent!r}")
     cfg = load_tuning(tuning) if isinstance(tuning, str) else tuning
-    tracker = JIPDATracker(cfg) if agent == "jipda" else GNNTracker(cfg)
+    tracker = JIPDATracker(cfg, water) if agent == "jipda" else GNNTracker(cfg, water)
     plot_times: list[float] = []
     plot_positions: list[np.ndarray] = []
     plot_shapes: list[np.ndarray] = []
@@ -181,7 +184,7 @@ def track_recording(
     from seatwin.perception.camera_frames import camera_detector
     from seatwin.perception.from_recording import scans_from_recording
     from seatwin.perception.lidar import LidarClustering
-    from seatwin.perception.map_mask import load_mask
+    from seatwin.perception.map_mask import NoMask, load_mask
     from seatwin.perception.measurements import MeasurementKind
     from seatwin.perception.radar import RadarPlots
     from seatwin.recording import open_bag
@@ -219,7 +222,8 @@ def track_recording(
             if progress is not None:
                 progress(done, found.total)
 
-        tracks = track_scans(found.scans, cfg, agent=options.agent, source=str(path), on_scan=advance)
+        water = None if isinstance(mask, NoMask) else mask
+        tracks = track_scans(found.scans, cfg, agent=options.agent, source=str(path), on_scan=advance, water=water)
     import numpy as np
 
     return TrackingResult(

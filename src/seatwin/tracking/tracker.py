@@ -4,9 +4,11 @@ Per scan: predict every track (constant velocity, existence × P_S), gate (eq. 5
 the joint association per cluster (:mod:`.association`: exact where cheap, belief propagation
 beyond), update each track with
 the probability-weighted mixture of its EKF corrections (moment-matched to one Gaussian),
-update existence, confirm/terminate by thresholds (and delete a confirmed track whose speed is
-inconsistent with ``v_max``: :func:`too_fast`), then start tracks from pairs of unassociated
-measurements of the same sensor within ``d = v_max·ΔT`` (thesis 5.1.3).
+update existence, confirm/terminate by thresholds, delete tracks that cannot be boats (a
+confirmed track whose speed is inconsistent with ``v_max``: :func:`too_fast`; a track faster than
+``v_max`` + margin for more than ``speed_gate_scans`` scans; with a water mask, a track on land for
+more than ``land_scans`` scans, and none is confirmed on land), then start tracks from pairs of
+unassociated measurements of the same sensor within ``d = v_max·ΔT`` (thesis 5.1.3).
 
 All tracks live in stacked arrays (``x`` (T, 4), ``P`` (T, 4, 4), ``r`` (T,)) so that each
 step is a handful of vectorised numpy operations whatever the number of tracks.
@@ -22,6 +24,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seatwin.errors import InputError
+from seatwin.perception.map_mask import WaterMask
 from seatwin.perception.measurements import MeasurementKind, Scan, polar_to_cartesian
 from seatwin.tracking import ekf
 from seatwin.tracking.association import existence_posterior, gate_threshold, jipda_marginals
@@ -109,17 +112,26 @@ def too_fast(x: Array, P: Array, config: TrackerConfig) -> NDArray[np.bool_]:
 class JIPDATracker:
     """Multi-target JIPDA tracker; feed it :class:`Scan` objects in time order with :meth:`step`."""
 
-    def __init__(self, config: TrackerConfig):
+    def __init__(self, config: TrackerConfig, water: WaterMask | None = None):
+        """``water``: the map's water mask; with it (and ``config.land_scans`` set) tracks on land are neither
+        confirmed nor kept (:meth:`_manage`)."""
         self.config = config
+        self.water = water
         self.x = np.zeros((0, 4))
         self.P = np.zeros((0, 4, 4))
         self.r = np.zeros(0)
         self.ids = np.zeros(0, dtype=np.int64)
         self.confirmed = np.zeros(0, dtype=bool)
+        self.fast_scans = np.zeros(0, dtype=np.int64)
+        """Consecutive scans each track has been faster than ``v_max`` + ``speed_gate_margin``."""
+        self.land_scans = np.zeros(0, dtype=np.int64)
+        """Consecutive scans each track's estimate has been on land."""
         self.time: float | None = None
         self._next_id = 1
         self.deleted_too_fast = 0
-        """Confirmed tracks deleted so far for a speed beyond ``v_max`` (:func:`too_fast`)."""
+        """Tracks deleted so far for a speed beyond ``v_max`` (:func:`too_fast`, ``speed_gate_scans``)."""
+        self.deleted_on_land = 0
+        """Tracks deleted so far for staying on land (``land_scans``)."""
         # Unassociated positional measurements of each sensor's previous scan: (time, pos, cov).
         self._pending: dict[str, tuple[float, Array, Array]] = {}
         self._gates: dict[int, tuple[float, float]] = {}
@@ -242,21 +254,41 @@ class JIPDATracker:
         return associated
 
     def _manage(self) -> None:
-        """Confirm by existence; delete tracks below the termination threshold and confirmed tracks too fast
-        for the tuning's ``v_max`` (:func:`too_fast`)."""
+        """Confirm by existence (not on land); delete tracks below the termination threshold, confirmed tracks
+        too fast for the tuning's ``v_max`` (:func:`too_fast`), tracks faster than ``v_max`` + ``speed_gate_margin``
+        for more than ``speed_gate_scans`` consecutive scans, and tracks on land for more than ``land_scans``."""
         c = self.config
-        self.confirmed |= self.r >= c.confirm_threshold
+        over, on_land = self._over_limits(self.x)
+        self.fast_scans = np.where(over, self.fast_scans + 1, 0)
+        self.land_scans = np.where(on_land, self.land_scans + 1, 0)
+        self.confirmed |= (self.r >= c.confirm_threshold) & ~on_land
         fast = self.confirmed & too_fast(self.x, self.P, c)
+        if c.speed_gate_scans is not None:
+            fast |= self.fast_scans > c.speed_gate_scans
+        land = (self.land_scans > c.land_scans) & ~fast if c.land_scans is not None else np.zeros(self.r.size, dtype=bool)
         self.deleted_too_fast += int(fast.sum())
-        keep = (self.r >= c.terminate_threshold) & ~fast
+        self.deleted_on_land += int(land.sum())
+        keep = (self.r >= c.terminate_threshold) & ~fast & ~land
         if not keep.all():
-            self.x, self.P, self.r, self.ids, self.confirmed = (
+            self.x, self.P, self.r, self.ids, self.confirmed, self.fast_scans, self.land_scans = (
                 self.x[keep],
                 self.P[keep],
                 self.r[keep],
                 self.ids[keep],
                 self.confirmed[keep],
+                self.fast_scans[keep],
+                self.land_scans[keep],
             )
+
+    def _over_limits(self, x: Array) -> tuple[NDArray[np.bool_], NDArray[np.bool_]]:
+        """Which states ``x`` are faster than ``v_max`` + ``speed_gate_margin``, and which lie on land (never
+        without a water mask or with ``land_scans`` null)."""
+        c = self.config
+        over = np.hypot(x[:, 1], x[:, 3]) > c.v_max + c.speed_gate_margin
+        on_land = np.zeros(x.shape[0], dtype=bool)
+        if self.water is not None and c.land_scans is not None and x.shape[0]:
+            on_land = ~np.asarray(self.water.is_water(x[:, 0], x[:, 2]), dtype=bool)
+        return over, on_land
 
     def _initiate(self, scan: Scan, z: Array, tuning: SensorTuning) -> None:
         """Two-point initiation from unassociated measurements within d = v_max·ΔT (+ margin)."""
@@ -301,6 +333,10 @@ class JIPDATracker:
         self.r = np.concatenate((self.r, np.full(n, self.config.initial_existence)))
         self.ids = np.concatenate((self.ids, np.arange(self._next_id, self._next_id + n)))
         self.confirmed = np.concatenate((self.confirmed, np.zeros(n, dtype=bool)))
+        # A new track's own scan counts: its first estimate may already be too fast or on land.
+        fast, land = self._over_limits(x)
+        self.fast_scans = np.concatenate((self.fast_scans, fast.astype(np.int64)))
+        self.land_scans = np.concatenate((self.land_scans, land.astype(np.int64)))
         self._next_id += n
 
     def snapshot(self) -> TrackTable:
@@ -360,6 +396,6 @@ def polar_or_cartesian(scan: Scan, z: Array) -> Array:
     return polar_to_cartesian(z, (scan.sensor_north, scan.sensor_east))
 
 
-def track(scans: Iterable[Scan], config: TrackerConfig) -> TrackTable:
-    """Run a fresh tracker over ``scans``."""
-    return JIPDATracker(config).run(scans)
+def track(scans: Iterable[Scan], config: TrackerConfig, water: WaterMask | None = None) -> TrackTable:
+    """Run a fresh tracker over ``scans`` (tracks on land of ``water`` handled per ``config.land_scans``)."""
+    return JIPDATracker(config, water).run(scans)
