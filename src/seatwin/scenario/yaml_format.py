@@ -29,9 +29,10 @@ from typing import Annotated, Any, Literal
 import yaml
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
 
-from seatwin.errors import InputError, read_text
+from seatwin.errors import InputError
 from seatwin.geo import GeodeticOrigin
 from seatwin.layout import HARBOUR_NAMES, harbour_name
+from seatwin.safe_yaml import load_yaml
 from seatwin.scenario.defaults import RAVNKLOA
 from seatwin.scenario.gemini_csv import MAX_SPEED, check_max_speed, read_gemini_csv, write_gemini_csv
 from seatwin.scenario.model import Dimensions, Role, Scenario, Vessel
@@ -104,15 +105,7 @@ def _field(loc: tuple[Any, ...]) -> str:
 
 def parse_spec(path: Path) -> ScenarioSpec:
     """Read and validate a scenario YAML; :class:`InputError` names the file, line or field."""
-    text = read_text(path, "a scenario YAML file")
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        where = f"line {mark.line + 1}, column {mark.column + 1}" if mark is not None else None
-        problem = getattr(exc, "problem", None) or str(exc)
-        problem = " ".join(str(problem).replace('in "<unicode string>", ', "at ").split())
-        raise InputError(path, f"not valid YAML: {problem}", where=where) from None
+    data = load_yaml(path, "a scenario YAML file")
     if not isinstance(data, dict):
         raise InputError(path, f"expected a mapping of scenario fields at the top level, got {type(data).__name__}")
     try:
