@@ -48,7 +48,7 @@ class ParameterError(InputError):
         super().__init__(param, message)
 
 
-_NUMBER = re.compile(r"[ \t]*[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?[ \t]*")
+NUMBER = re.compile(r"[ \t]*[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?[ \t]*")
 """A decimal number in ASCII, optionally between ASCII blanks: what text data formats write."""
 
 
@@ -60,7 +60,7 @@ def parse_finite(text: str, source: str | PathLike[str] | None, field: str, line
     no-break space after the number, none of which a GNSS or CSV file legitimately holds.
     """
     where = f"line {line}" if line is not None else None
-    if _NUMBER.fullmatch(text) is None:
+    if NUMBER.fullmatch(text) is None:
         word = text.strip(" \t").lstrip("+-").lower()
         kind = "a finite number" if word in ("nan", "inf", "infinity") else "a number"
         raise InputError(source, f"expected {kind} for {field}, got {text!r}", where=where)

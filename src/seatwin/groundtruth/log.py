@@ -13,6 +13,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seatwin.errors import InputError
+from seatwin.geo import GeodeticOrigin, llh_to_ned_flat
+from seatwin.scenario.plausibility import MAX_SPEED, first_teleport
 
 QUALITY_NAMES: dict[str, dict[int, str]] = {
     # NMEA 0183 GGA field 6.
@@ -123,3 +125,29 @@ def validate_log(log: AntennaLog) -> None:
         i = int(bad[0]) + 1
         kind = "duplicated" if steps[i - 1] == 0 else "decreasing (non-monotonic)"
         raise InputError(log.source, f"{kind} time {log.time[i]!r} after {log.time[i - 1]!r}", where=_where(log, i))
+
+
+def check_log_motion(log: AntennaLog, max_speed: float = MAX_SPEED) -> None:
+    """Raise :class:`InputError` at the first fix that implies a teleport: further from the fix before
+    than ``max_speed`` [m/s] allows (the same check a scenario CSV gets when it is read,
+    :func:`seatwin.scenario.plausibility.first_teleport`).
+
+    A receiver does not put a harbour vessel 100 km away for one fix; such a fix is a corrupt
+    line or a mistyped number (``-0`` for a longitude), so it is an error naming the line, never
+    dropped and interpolated over: the ground truth is the reference everything else is judged by.
+    """
+    lon = np.unwrap(log.lon, period=360.0)
+    origin = GeodeticOrigin(float(log.lat[0]), float(lon[0]), 0.0)
+    north, east, _ = llh_to_ned_flat(log.lat, lon, np.zeros_like(log.lat), origin)
+    jump = first_teleport(log.time, north, east, max_speed)
+    if jump is None:
+        return
+    k = jump.index
+    others = f"; {jump.count} steps between fixes in the file are that fast" if jump.count > 1 else ""
+    raise InputError(
+        log.source,
+        f"fix at latitude {float(log.lat[k + 1])!r}, longitude {float(log.lon[k + 1])!r} is {jump.step:.4g} m from the fix at "
+        f"{_where(log, k)}, {jump.dt:.3g} s before ({jump.speed:.4g} m/s, faster than max_speed {max_speed:g} m/s): "
+        f"a teleport (a corrupt line or mistyped number?){others}",
+        where=_where(log, k + 1),
+    )

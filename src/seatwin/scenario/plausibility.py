@@ -28,11 +28,12 @@ SPIKE_JUMP_DEG = 90.0
 
 @dataclass(frozen=True)
 class Teleport:
-    """Samples ``index`` → ``index + 1`` are ``step`` metres apart in ``dt`` seconds."""
+    """Samples ``index`` → ``index + 1`` are ``step`` metres apart in ``dt`` seconds; ``count`` steps in all are too fast."""
 
     index: int
     step: float
     dt: float
+    count: int = 1
 
     @property
     def speed(self) -> float:
@@ -70,7 +71,7 @@ def first_teleport(time: ArrayLike, north: ArrayLike, east: ArrayLike, max_speed
     if not bad.size:
         return None
     k = int(bad[0])
-    return Teleport(k, float(step[k]), float(dt[k]))
+    return Teleport(k, float(step[k]), float(dt[k]), int(bad.size))
 
 
 def first_heading_spike(
