@@ -94,6 +94,7 @@ def test_ordinary_yaml_accepted() -> None:
 
 
 def test_syntax_errors_and_unsafe_tags_name_the_line() -> None:
+    assert _refused("a: 1\nb: x\x1a\n", r"not valid YAML: character 0x001a is not allowed").where == "line 2"
     assert _refused("a: [1, 2\nb: 3\n", r"not valid YAML").where.startswith("line ")
     _refused("a: 1\nx: !!python/object/apply:os.system [ls]\n", r"could not determine a constructor")
     for tagged in ("!!int ''", "!!int x", "!!float x", "!!bool maybe", "!!timestamp 2020-02-30", "!!timestamp x"):
@@ -183,3 +184,10 @@ def test_hostile_text_is_data_or_one_input_error(text: str) -> None:
         return True
 
     assert finite(data)
+
+
+def test_plain_values_with_a_no_break_space_are_refused() -> None:
+    """A number followed by U+00A0 would be read as the number by the settings; a name would hide it."""
+    _refused("ray_drop: 0.05\u00a0\n", r"value '0\.05\\xa0' starts or ends with the space character U\+00A0")
+    _refused("a: {b: 1\u2003}\n", r"U\+2003")
+    assert parse_yaml('name: "x\u00a0"\nboat: Havfruen\u00a0II\n', "in.yaml") == {"name": "x\u00a0", "boat": "Havfruen\u00a0II"}

@@ -23,6 +23,7 @@ from typing import Any
 import yaml
 from yaml.events import AliasEvent, CollectionStartEvent
 from yaml.nodes import Node, ScalarNode
+from yaml.reader import ReaderError
 
 from seatwin.errors import InputError, read_text
 
@@ -76,6 +77,19 @@ class _Loader(yaml.SafeLoader):
             value = node.value if isinstance(node, ScalarNode) else "…"
             raise _Refused(problem=f"{value!r} is not a valid !!{tag}", problem_mark=node.start_mark) from None
 
+    def construct_yaml_str(self, node: ScalarNode) -> str:
+        value = str(super().construct_yaml_str(node))
+        if node.style is None and value != value.strip():
+            # YAML strips blanks around a plain value, but not a no-break space (U+00A0) and the like,
+            # which would then hide in a name or be dropped silently when the value is read as a number.
+            odd = value[0] if value[0].isspace() else value[-1]
+            raise _Refused(
+                problem=f"value {value!r} starts or ends with the space character U+{ord(odd):04X}: "
+                "remove it (or quote the value)",
+                problem_mark=node.start_mark,
+            )
+        return value
+
     def construct_yaml_int(self, node: ScalarNode) -> int:
         text = str(node.value)
         if len(text) > _MAX_NUMBER_CHARS:
@@ -97,15 +111,20 @@ class _Loader(yaml.SafeLoader):
         return value
 
 
+_Loader.add_constructor("tag:yaml.org,2002:str", _Loader.construct_yaml_str)
 _Loader.add_constructor("tag:yaml.org,2002:int", _Loader.construct_yaml_int)
 _Loader.add_constructor("tag:yaml.org,2002:float", _Loader.construct_yaml_float)
 
 
 def parse_yaml(text: str, source: str | PathLike[str] | None) -> Any:
     """The data of the YAML ``text`` (one document), or one :class:`InputError` naming ``source`` and the line."""
-    loader = _Loader(text)
+    loader = None
     try:
+        loader = _Loader(text)  # checks the characters first
         return loader.get_single_data()
+    except ReaderError as exc:
+        line = text.count("\n", 0, exc.position) + 1
+        raise InputError(source, f"not valid YAML: character {exc.character:#06x} is not allowed", where=f"line {line}") from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         where = f"line {mark.line + 1}, column {mark.column + 1}" if mark is not None else None
@@ -114,7 +133,8 @@ def parse_yaml(text: str, source: str | PathLike[str] | None) -> Any:
         prefix = "" if isinstance(exc, _Refused) else "not valid YAML: "
         raise InputError(source, f"{prefix}{problem}", where=where) from None
     finally:
-        loader.dispose()
+        if loader is not None:
+            loader.dispose()
 
 
 def load_yaml(path: str | PathLike[str], expected: str) -> Any:

@@ -168,3 +168,13 @@ def test_builtin_scenarios_have_no_teleport_or_heading_spike():
             tr = v.trajectory
             assert first_teleport(tr.time, tr.north, tr.east) is None, (name, v.name)
             assert first_heading_spike(tr.time, np.degrees(tr.heading)) is None, (name, v.name)
+
+
+def test_vessel_numbers_are_ascii_and_bounded(tmp_path: Path):
+    path = tmp_path / "v.csv"
+    path.write_text("TimeInSecondsPosix,V" + "9" * 5000 + "x,V1y,V1Heading\n1,0,0,0\n2,0,0,0\n")
+    with pytest.raises(InputError, match=r"line 1: vessel number of 5000 digits"):
+        read_gemini_csv(path)
+    path.write_text("TimeInSecondsPosix,V\u0663x,V\u0663y,V\u0663Heading\n1,0,0,0\n2,0,0,0\n")
+    with pytest.raises(InputError, match=r"line 1: no vessel columns"):
+        read_gemini_csv(path)

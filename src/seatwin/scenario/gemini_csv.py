@@ -23,7 +23,7 @@ from seatwin.scenario.plausibility import MAX_SPEED, MAX_TURN_RATE, first_headin
 
 TIME_POSIX = "TimeInSecondsPosix"
 TIME_OF_DAY = "TimeOfDay"
-_VESSEL_COLUMN = re.compile(r"^V(\d+)(x|y|Heading)$")
+_VESSEL_COLUMN = re.compile(r"^V([0-9]+)(x|y|Heading)$")
 
 
 def _parse_time_of_day(text: str, date: dt.date, path: Path, line: int) -> float:
@@ -116,6 +116,8 @@ def _read_rows(
     for i, name in enumerate(header):
         m = _VESSEL_COLUMN.match(name)
         if m:
+            if len(m.group(1)) > 6:
+                raise InputError(path, f"vessel number of {len(m.group(1))} digits in column {name[:20]!r}…", where="line 1")
             columns.setdefault(int(m.group(1)), {})[m.group(2)] = i
     if not columns:
         raise InputError(path, "no vessel columns V{n}x, V{n}y, V{n}Heading", where="line 1")
