@@ -218,3 +218,10 @@ def test_any_one_changed_coordinate_is_read_checked_or_refused(k: int, column: i
             return
         write_outputs(result, tmp / "gt.csv")
         load_scenario(tmp / "gt.csv")
+
+
+def test_heights_beyond_any_vessel_are_refused(tmp_path: Path) -> None:
+    t = T0 + np.arange(3) * 0.2
+    path = write_csv(tmp_path / "h.csv", t, np.full(3, 63.43), np.full(3, 10.39), np.array([40.0, 99999999999999999999.0, 40.0]))
+    with pytest.raises(InputError, match=r"line 3: height 1e\+20 outside \[-11000, 100000\] m"):
+        read_antenna_log(path)

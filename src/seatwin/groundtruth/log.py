@@ -16,6 +16,9 @@ from seatwin.errors import InputError
 from seatwin.geo import GeodeticOrigin, llh_to_ned_flat
 from seatwin.scenario.plausibility import MAX_SPEED, first_teleport
 
+HEIGHT_RANGE_M = (-11_000.0, 100_000.0)
+"""Heights a GNSS fix can have [m] (the deepest sea to near space); beyond is a corrupt number."""
+
 QUALITY_NAMES: dict[str, dict[int, str]] = {
     # NMEA 0183 GGA field 6.
     "nmea-gga": {
@@ -119,6 +122,13 @@ def validate_log(log: AntennaLog) -> None:
     bad = np.flatnonzero((log.lon < -180.0) | (log.lon > 360.0))
     if bad.size:
         raise InputError(log.source, f"longitude {log.lon[bad[0]]!r} outside [-180, 360] degrees", where=_where(log, int(bad[0])))
+    if log.height is not None:
+        lo, hi = HEIGHT_RANGE_M
+        bad = np.flatnonzero((log.height < lo) | (log.height > hi))
+        if bad.size:
+            raise InputError(
+                log.source, f"height {float(log.height[bad[0]])!r} outside [{lo:g}, {hi:g}] m", where=_where(log, int(bad[0]))
+            )
     steps = np.diff(log.time)
     bad = np.flatnonzero(steps <= 0)
     if bad.size:
