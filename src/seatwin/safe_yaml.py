@@ -22,7 +22,7 @@ from typing import Any
 
 import yaml
 from yaml.events import AliasEvent, CollectionStartEvent
-from yaml.nodes import Node, ScalarNode
+from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
 from yaml.reader import ReaderError
 
 from seatwin.errors import InputError, read_text
@@ -116,12 +116,43 @@ _Loader.add_constructor("tag:yaml.org,2002:int", _Loader.construct_yaml_int)
 _Loader.add_constructor("tag:yaml.org,2002:float", _Loader.construct_yaml_float)
 
 
-def parse_yaml(text: str, source: str | PathLike[str] | None) -> Any:
-    """The data of the YAML ``text`` (one document), or one :class:`InputError` naming ``source`` and the line."""
+Lines = dict[tuple[Any, ...], int]
+"""Where each value is: its path (mapping keys and sequence indices from the top) → 1-based line."""
+
+
+def _collect_lines(node: Node, path: tuple[Any, ...], out: Lines) -> None:
+    out[path] = node.start_mark.line + 1
+    if isinstance(node, MappingNode):
+        for key, value in node.value:
+            _collect_lines(value, (*path, key.value if isinstance(key, ScalarNode) else None), out)
+    elif isinstance(node, SequenceNode):
+        for i, value in enumerate(node.value):
+            _collect_lines(value, (*path, i), out)
+
+
+def line_of(lines: Lines, path: tuple[Any, ...]) -> int | None:
+    """The line of ``path`` (a pydantic error location, say), or of its nearest enclosing value found."""
+    for n in range(len(path), 0, -1):
+        if path[:n] in lines:
+            return lines[path[:n]]
+    return None
+
+
+def parse_yaml(text: str, source: str | PathLike[str] | None, lines: Lines | None = None) -> Any:
+    """The data of the YAML ``text`` (one document), or one :class:`InputError` naming ``source`` and the line.
+
+    ``lines``, when given, is filled with the line of every value (:func:`line_of` finds one), so a
+    later check of the data can name the line too.
+    """
     loader = None
     try:
         loader = _Loader(text)  # checks the characters first
-        return loader.get_single_data()
+        node = loader.get_single_node()
+        if node is None:
+            return None
+        if lines is not None:
+            _collect_lines(node, (), lines)
+        return loader.construct_document(node)
     except ReaderError as exc:
         line = text.count("\n", 0, exc.position) + 1
         raise InputError(source, f"not valid YAML: character {exc.character:#06x} is not allowed", where=f"line {line}") from None
@@ -137,12 +168,13 @@ def parse_yaml(text: str, source: str | PathLike[str] | None) -> Any:
             loader.dispose()
 
 
-def load_yaml(path: str | PathLike[str], expected: str) -> Any:
-    """The data of the YAML file ``path`` (``expected`` says what it should be, e.g. "a campaign YAML file")."""
+def load_yaml(path: str | PathLike[str], expected: str, lines: Lines | None = None) -> Any:
+    """The data of the YAML file ``path`` (``expected`` says what it should be, e.g. "a campaign YAML file");
+    ``lines`` as for :func:`parse_yaml`."""
     try:
         size = os.stat(path).st_size
     except OSError as exc:
         raise InputError(path, f"cannot open: {exc.strerror or exc}") from None
     if size > MAX_BYTES:
         raise InputError(path, f"{size} bytes is too large for {expected} (at most {MAX_BYTES} bytes)")
-    return parse_yaml(read_text(path, expected), path)
+    return parse_yaml(read_text(path, expected), path, lines)

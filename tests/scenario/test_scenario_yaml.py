@@ -157,7 +157,7 @@ def test_writer_refuses_other_suffixes(tmp_path: Path):
         ("seed: " + "1" * 5000 + "\n", r"line \d+, column 7: integer of 5000 characters is too large"),
         ("seed: 99999999999999999999\n", r"line \d+, column 7: integer 99999999999999999999 is too large"),
         ("origin: {lat: .nan, lon: 10.0}\n", r"line \d+, column 15: expected a finite number, got \.nan"),
-        ("origin: {lat: 63.0, lon: nan}\n", r"field origin\.lon: Input should be a finite number"),
+        ("origin: {lat: 63.0, lon: nan}\n", r"line 1, field origin\.lon: Input should be a finite number"),
         ("origin: {lat: 63.0, lon: 10.0, height: 1.0e+400}\n", r"line \d+, column 40: expected a finite number"),
     ],
 )

@@ -27,7 +27,7 @@ from pydantic import Field, field_validator
 
 from seatwin.errors import InputError, ParameterError
 from seatwin.evaluation.compare import CompareOptions
-from seatwin.safe_yaml import load_yaml
+from seatwin.safe_yaml import Lines, line_of, load_yaml
 from seatwin.settings import Seeds, Settings, validated
 from seatwin.sim.settings import SimulationSettings
 
@@ -146,7 +146,8 @@ def load_campaign(path: str | os.PathLike[str]) -> CampaignSpec:
     relative to the campaign file and are made absolute here, so every job names the same file.
     """
     path = Path(path)
-    data = load_yaml(path, "a campaign YAML file")
+    lines: Lines = {}
+    data = load_yaml(path, "a campaign YAML file", lines)
     if not isinstance(data, dict):
         raise InputError(path, f"expected a mapping of campaign fields at the top level, got {type(data).__name__}")
     base = path.resolve().parent
@@ -161,4 +162,10 @@ def load_campaign(path: str | os.PathLike[str]) -> CampaignSpec:
                     section[name] = [_resolve(x, base) for x in section[name]]
                 elif name in section:
                     section[name] = _resolve(section[name], base)
-    return validated(CampaignSpec, data, source=path)
+    try:
+        return validated(CampaignSpec, data, source=path)
+    except InputError as exc:
+        line = None if exc.where is None else line_of(lines, (exc.where,))
+        if line is None:
+            raise
+        raise InputError(path, exc.detail, where=f"line {line}, field {exc.where}") from None
