@@ -191,3 +191,34 @@ def test_plain_values_with_a_no_break_space_are_refused() -> None:
     _refused("ray_drop: 0.05\u00a0\n", r"value '0\.05\\xa0' starts or ends with the space character U\+00A0")
     _refused("a: {b: 1\u2003}\n", r"U\+2003")
     assert parse_yaml('name: "x\u00a0"\nboat: Havfruen\u00a0II\n', "in.yaml") == {"name": "x\u00a0", "boat": "Havfruen\u00a0II"}
+
+
+def test_every_user_yaml_goes_through_the_loader(tmp_path: Path) -> None:
+    """Tuning, radar and raster YAML files refuse the bomb like scenario and campaign files do."""
+    from seatwin.layout import read_land_raster
+    from seatwin.sensors.radar.config import load_radar_config
+    from seatwin.tracking import load_tuning
+
+    bomb = tmp_path / "bomb.yaml"
+    bomb.write_text(BILLION_LAUGHS)
+    (tmp_path / "bomb.bin").write_bytes(b"\x01")
+    for load in (load_tuning, load_radar_config, read_land_raster):
+        with pytest.raises(InputError, match=r"line 1, column 4: anchor &a"):
+            load(bomb)
+    deep = tmp_path / "deep.json"
+    deep.write_text("[" * 100_000 + "]" * 100_000)
+    with pytest.raises(InputError, match="cannot parse tuning file"):
+        load_tuning(deep)
+    raster = tmp_path / "map.yaml"
+    (tmp_path / "map.bin").write_bytes(b"\x01\x00")
+    good = "map_width: 2\nmap_height: 1\norigin_x_coordinate: 0\norigin_y_coordinate: 0\n"
+    for text, match in (
+        (good.replace("map_width: 2", "map_width: '2'"), r"map_width: expected a positive integer"),
+        (good.replace("origin_x_coordinate: 0", "origin_x_coordinate: x"), r"origin_x_coordinate: expected a number"),
+        (good + "grid_resolution: 0\n", r"grid_resolution: expected a positive number"),
+    ):
+        raster.write_text(text)
+        with pytest.raises(InputError, match=match):
+            read_land_raster(raster)
+    raster.write_text(good)
+    assert read_land_raster(raster).water.shape == (1, 2)
