@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import csv
 import io
+import math
+import re
 from collections.abc import Callable, Iterator
 from os import PathLike
 from pathlib import Path
@@ -46,14 +48,24 @@ class ParameterError(InputError):
         super().__init__(param, message)
 
 
+NUMBER = re.compile(r"[ \t]*[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?[ \t]*")
+"""A decimal number in ASCII, optionally between ASCII blanks: what text data formats write."""
+
+
 def parse_finite(text: str, source: str | PathLike[str] | None, field: str, line: int | None = None) -> float:
-    """``text`` as a finite float, or an :class:`InputError` naming the source, line and field."""
+    """``text`` as a finite float, or an :class:`InputError` naming the source, line and field.
+
+    Stricter than ``float()``: only an ASCII decimal number (``-12.5``, ``1e-3``), optionally between
+    spaces or tabs. ``float()`` also takes ``nan``, ``inf``, ``1_000``, non-ASCII digits and a
+    no-break space after the number, none of which a GNSS or CSV file legitimately holds.
+    """
     where = f"line {line}" if line is not None else None
-    try:
-        value = float(text)
-    except ValueError:
-        raise InputError(source, f"expected a number for {field}, got {text!r}", where=where) from None
-    if value != value or value in (float("inf"), float("-inf")):
+    if NUMBER.fullmatch(text) is None:
+        word = text.strip(" \t").lstrip("+-").lower()
+        kind = "a finite number" if word in ("nan", "inf", "infinity") else "a number"
+        raise InputError(source, f"expected {kind} for {field}, got {text!r}", where=where)
+    value = float(text)
+    if not math.isfinite(value):
         raise InputError(source, f"expected a finite number for {field}, got {text!r}", where=where)
     return value
 

@@ -35,9 +35,9 @@ def parameter_error(exc: ValidationError, model: str) -> ParameterError:
 
 
 class Settings(BaseModel):
-    """Base of every settings model: unknown fields are errors, instances are immutable."""
+    """Base of every settings model: unknown fields are errors, numbers are finite, instances are immutable."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
     def __init__(self, **data: Any) -> None:
         try:

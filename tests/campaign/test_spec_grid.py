@@ -102,17 +102,17 @@ def test_relative_files_are_relative_to_the_campaign_file(tmp_path):
 @pytest.mark.parametrize(
     ("text", "where", "what"),
     [
-        (EXAMPLE.replace("depthbuffer, raycast", "depthbuffer, laser"), "synthetic", "lidar_mode: Input should be"),
-        (EXAMPLE.replace("[depthbuffer, raycast]", "raycast"), "synthetic", "lidar_mode: expected a list of values"),
-        (EXAMPLE.replace("lidar_mode: [", "lidar_moed: ["), "synthetic", "lidar_moed: not a simulation setting"),
-        (EXAMPLE.replace("lidar_mode: [", "seed: [1, 2], lidar_mode: ["), "synthetic", "seed: not a simulation setting"),
-        (EXAMPLE.replace("[depthbuffer, raycast]", "[raycast, raycast]"), "synthetic", "expected distinct values"),
-        (EXAMPLE.replace("{lidar_mode: raycast}", "{ray_drop: 1.5}"), "reference", "ray_drop: Input should be less than 1"),
-        (EXAMPLE.replace("[1, 2, 3]", "[1, 1]"), "seeds", "expected distinct seeds"),
+        (EXAMPLE.replace("depthbuffer, raycast", "depthbuffer, laser"), "line 4, field synthetic", "lidar_mode: Input should be"),
+        (EXAMPLE.replace("[depthbuffer, raycast]", "raycast"), "line 4, field synthetic", "lidar_mode: expected a list of"),
+        (EXAMPLE.replace("lidar_mode: [", "lidar_moed: ["), "line 4, field synthetic", "lidar_moed: not a simulation setting"),
+        (EXAMPLE.replace("lidar_mode: [", "seed: [1, 2], lidar_mode: ["), "line 4, field synthetic", "seed: not a simulation"),
+        (EXAMPLE.replace("[depthbuffer, raycast]", "[raycast, raycast]"), "line 4, field synthetic", "expected distinct values"),
+        (EXAMPLE.replace("{lidar_mode: raycast}", "{ray_drop: 1.5}"), "line 5, field reference", "ray_drop: Input should be"),
+        (EXAMPLE.replace("[1, 2, 3]", "[1, 1]"), "line 2, field seeds", "expected distinct seeds"),
         (EXAMPLE.replace("seeds: [1, 2, 3]\n", ""), "seeds", "Field required"),
-        (EXAMPLE.replace("duration: 20", "duration: -1"), "duration", "greater than 0"),
-        (EXAMPLE.replace("[synthetic]", "[sinthetic]"), "tunings", "not a tuning preset"),
-        (EXAMPLE + "colour: blue\n", "colour", "Extra inputs are not permitted"),
+        (EXAMPLE.replace("duration: 20", "duration: -1"), "line 3, field duration", "greater than 0"),
+        (EXAMPLE.replace("[synthetic]", "[sinthetic]"), "line 6, field tunings", "not a tuning preset"),
+        (EXAMPLE + "colour: blue\n", "line 7, field colour", "Extra inputs are not permitted"),
     ],
 )
 def test_bad_fields_name_the_file_and_field(tmp_path, text, where, what):
@@ -158,7 +158,55 @@ def test_cli_bad_campaign_file_exits_2_with_one_line(tmp_path, capsys):
     path = _write(tmp_path, EXAMPLE.replace("depthbuffer, raycast", "depthbuffer, laser"))
     assert run(["campaign", str(path), "--out", str(tmp_path / "out"), "--workers", "0"]) == 2
     err = capsys.readouterr().err.strip()
-    assert err.startswith(f"seatwin: error: {path}: synthetic: lidar_mode: Input should be") and "\n" not in err
+    assert err.startswith(f"seatwin: error: {path}: line 4, field synthetic: lidar_mode: Input should be") and "\n" not in err
     assert not (tmp_path / "out" / "jobs").exists()
     assert run(["campaign", str(tmp_path / "nope.yaml"), "--out", str(tmp_path / "out")]) == 2
     assert "cannot open" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    ("text", "where", "what"),
+    [
+        (
+            'a: &a ["lol","lol","lol","lol","lol","lol","lol","lol","lol"]\nb: &b [*a,*a,*a,*a,*a,*a,*a,*a,*a]\n'
+            "c: &c [*b,*b,*b,*b,*b,*b,*b,*b,*b]\nd: &d [*c,*c,*c,*c,*c,*c,*c,*c,*c]\ne: &e [*d,*d,*d,*d,*d,*d,*d,*d,*d]\n"
+            "f: &f [*e,*e,*e,*e,*e,*e,*e,*e,*e]\ng: &g [*f,*f,*f,*f,*f,*f,*f,*f,*f]\nh: &h [*g,*g,*g,*g,*g,*g,*g,*g,*g]\n"
+            "scenarios: *h\n",
+            "line 1, column 4",
+            "anchor &a: YAML anchors and aliases are not accepted",
+        ),
+        (EXAMPLE + "reference_seed_offset: &x 5\nduration2: *x\n", "line 7, column 24", "anchor &x"),
+        (EXAMPLE + "synthetic2: " + "[" * 1000 + "]" * 1000 + "\n", "line 7, column 76", "nested deeper than 64 levels"),
+        (EXAMPLE + "reference_seed_offset: " + "7" * 5000 + "\n", "line 7, column 24", "integer of 5000 characters"),
+        (EXAMPLE.replace("duration: 20", "duration: .inf"), "line 3, column 11", "expected a finite number, got .inf"),
+    ],
+)
+def test_hostile_yaml_is_refused_with_file_and_line(tmp_path, text, where, what):
+    path = _write(tmp_path, text)
+    with pytest.raises(InputError) as err:
+        load_campaign(path)
+    assert err.value.source == str(path) and err.value.where == where, str(err.value)
+    assert what in err.value.detail
+
+
+@pytest.mark.parametrize("value", ["inf", "-inf", "nan", "1e999"])
+def test_non_finite_numbers_written_as_words_are_refused(tmp_path, value):
+    """YAML reads ``inf`` and ``1e999`` as strings; the settings still refuse them as numbers."""
+    for text, where in (
+        (EXAMPLE.replace("duration: 20", f"duration: {value}"), "line 3, field duration"),
+        (EXAMPLE.replace("{lidar_mode: raycast}", f"{{range_noise: {value}}}"), "line 5, field reference"),
+        (EXAMPLE + f"comparison: {{gate: {value}}}\n", "line 7, field comparison"),
+    ):
+        with pytest.raises(InputError, match="finite number") as err:
+            load_campaign(_write(tmp_path, text))
+        assert err.value.where == where
+
+
+def test_cli_refuses_an_alias_bomb_at_once(tmp_path, capsys):
+    path = _write(tmp_path, "a: &a [1, 2]\nb: [*a, *a]\n" + EXAMPLE)
+    assert run(["campaign", str(path), "--out", str(tmp_path / "out"), "--workers", "0"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == (
+        f"seatwin: error: {path}: line 1, column 4: anchor &a: YAML anchors and aliases are not accepted "
+        "(they can expand without bound); write the value out"
+    )

@@ -12,7 +12,12 @@ script (``measure_escapes.py``) and the regression corpus share them:
   length/number (``0xFFFFFFFF``, ``0x7FFFFFFF``, …), ``delete`` and ``duplicate`` a range;
 * text: ``number`` (a numeric token → ``nan``, ``inf``, ``1e400``, a 400-digit number, …),
   ``utf8`` (invalid UTF-8), ``huge`` (a field beyond csv's 128 KiB limit, or an unclosed quote),
-  ``swap_lines``, ``dup_line``, ``drop_line``.
+  ``swap_lines``, ``dup_line``, ``drop_line``;
+* families of :data:`FAMILY_KINDS`, measured one at a time (``measure_escapes.py --kinds``):
+  YAML ``yaml_alias`` (an alias bomb or an anchor/alias pair), ``yaml_deep`` (a value nested
+  50–5,000 deep), ``yaml_int`` (a 20–5,000-digit integer), ``nonfinite`` (a number → ``.inf``,
+  ``.nan``, ``nan``, ``-inf``, ``1.0e+999``), ``nbsp`` (a no-break space after a number),
+  ``udigit`` (a digit → an Arabic-Indic digit ``float()`` would take).
 """
 
 from __future__ import annotations
@@ -46,6 +51,13 @@ ABSURD = [
 ]
 JUNK = [b"\x00", b"\xff\xfe\xfd", b"#ROSBAG V2.0\n", b"\x89MCAP0\r\n", b"\n\n\n", b",,,", b"<", b'"', b"%", b"$GPGGA,"]
 NUMBERS = [b"nan", b"inf", b"-inf", b"1e400", b"1e308", b"-1e308", b"0", b"-0", b"", b"9" * 400, b"0x10", b"1_0", b"1e-320"]
+FAMILY_KINDS = ("yaml_alias", "yaml_deep", "yaml_int", "nonfinite", "nbsp", "udigit")
+BOMB = (
+    b'lol: &a ["lol","lol","lol","lol","lol","lol","lol","lol","lol"]\nb: &b [*a,*a,*a,*a,*a,*a,*a,*a,*a]\n'
+    b"c: &c [*b,*b,*b,*b,*b,*b,*b,*b,*b]\nd: &d [*c,*c,*c,*c,*c,*c,*c,*c,*c]\ne: &e [*d,*d,*d,*d,*d,*d,*d,*d,*d]\n"
+    b"f: &f [*e,*e,*e,*e,*e,*e,*e,*e,*e]\ng: &g [*f,*f,*f,*f,*f,*f,*f,*f,*f]\nh: &h [*g,*g,*g,*g,*g,*g,*g,*g,*g]\n"
+)
+NONFINITE = [b".inf", b"-.Inf", b".nan", b".NaN", b"nan", b"-inf", b"Infinity", b"1.0e+999", b"-1.0e+999"]
 BAD_UTF8 = [b"\xff", b"\xc3\x28", b"\xed\xa0\x80", b"\xe2\x82", b"\x80\x80"]
 _NUMBER = re.compile(rb"-?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?")
 
@@ -78,6 +90,8 @@ def apply(data: bytes, mutations: list[Mutation]) -> bytes:
             data = data[:p] + BAD_UTF8[arg % len(BAD_UTF8)] + data[p:]
         elif kind == "huge":
             data = data[:p] + (b'"' if arg % 2 else b"x" * 140_000) + data[p:]
+        elif kind in FAMILY_KINDS:
+            data = _apply_family(data, kind, pos, arg)
         elif kind in ("swap_lines", "dup_line", "drop_line"):
             lines = data.split(b"\n")
             i, j = pos % len(lines), arg % len(lines)
@@ -91,9 +105,42 @@ def apply(data: bytes, mutations: list[Mutation]) -> bytes:
     return data
 
 
-def random_mutations(rng: random.Random, text: bool) -> list[Mutation]:
-    """1–3 random mutations (the measuring script's counterpart of the hypothesis strategy)."""
-    kinds = BINARY_KINDS + (TEXT_KINDS if text else ())
+def _apply_family(data: bytes, kind: str, pos: int, arg: int) -> bytes:
+    hits = list(_NUMBER.finditer(data))
+    m = hits[pos % len(hits)] if hits else None
+    if kind == "yaml_alias":
+        lines = data.split(b"\n")
+        i = pos % len(lines)
+        if arg % 2:  # the bomb, as top-level keys or (mis)placed anywhere
+            lines.insert(i, BOMB.rstrip(b"\n"))
+        else:  # an anchor on one value and an alias to it in another
+            j = (i + 1 + arg % 7) % len(lines)
+            lines[i] = re.sub(rb":( +)(\S)", rb":\1&x \2", lines[i], count=1)
+            lines[j] = re.sub(rb":( +)\S.*$", rb": *x", lines[j], count=1)
+        return b"\n".join(lines)
+    if kind == "yaml_deep":
+        depth = (50, 65, 200, 1000, 5000)[arg % 5]
+        value = b"[" * depth + b"]" * depth if arg % 2 else b"{a: " * depth + b"1" + b"}" * depth
+        return data[: m.start()] + value + data[m.end() :] if m else value + data
+    if m is None:
+        return data
+    if kind == "yaml_int":
+        value = b"9" * (20, 64, 400, 4300, 5000)[arg % 5]
+    elif kind == "nonfinite":
+        value = NONFINITE[arg % len(NONFINITE)]
+    elif kind == "nbsp":
+        value = m.group() + "\u00a0".encode()
+    else:  # udigit
+        digits = [i for i, c in enumerate(m.group()) if 48 <= c <= 57]
+        i = digits[arg % len(digits)]
+        value = m.group()[:i] + "\u0663".encode() + m.group()[i + 1 :]
+    return data[: m.start()] + value + data[m.end() :]
+
+
+def random_mutations(rng: random.Random, text: bool, kinds: tuple[str, ...] | None = None) -> list[Mutation]:
+    """1–3 random mutations (the measuring script's counterpart of the hypothesis strategy); ``kinds``
+    chooses among the given kinds only (a family of :data:`FAMILY_KINDS`, say)."""
+    kinds = kinds or BINARY_KINDS + (TEXT_KINDS if text else ())
     return [(rng.choice(kinds), rng.randrange(1 << 30), rng.randrange(1 << 16)) for _ in range(rng.randint(1, 3))]
 
 
@@ -119,6 +166,12 @@ def read_scenario(path: Path) -> None:
     from seatwin.scenario.load import load_scenario
 
     load_scenario(path)
+
+
+def read_campaign(path: Path) -> None:
+    from seatwin.campaign.spec import load_campaign
+
+    load_campaign(path)
 
 
 def read_tracks(path: Path) -> None:
@@ -161,6 +214,7 @@ TARGETS: dict[str, Target] = {
         Target("rosbag2_yaml", read_bag, True),
         Target("scenario_csv", read_scenario, True),
         Target("scenario_yaml", read_scenario, True),
+        Target("campaign_yaml", read_campaign, True),
         Target("tracks", read_tracks, True),
         Target("gpx", read_gnss, True),
         Target("nmea", read_gnss, True),
@@ -179,6 +233,11 @@ class MultiLineError(Exception):
 def escape(target: str, path: Path) -> BaseException | None:
     """The exception other than InputError that reading ``path`` lets escape (a
     :class:`MultiLineError` for an InputError message of several lines), or None."""
+    return outcome(target, path)[0]
+
+
+def outcome(target: str, path: Path) -> tuple[BaseException | None, bool]:
+    """(what :func:`escape` returns, whether ``path`` was read without any error)."""
     try:
         TARGETS[target].read(path)
     except InputError as exc:
@@ -186,11 +245,11 @@ def escape(target: str, path: Path) -> BaseException | None:
             try:
                 raise MultiLineError(str(exc)) from exc
             except MultiLineError as wrapped:
-                return wrapped
-        return None
+                return wrapped, False
+        return None, False
     except Exception as exc:  # noqa: BLE001 - this is what the fuzz tests look for
-        return exc
-    return None
+        return exc, False
+    return None, True
 
 
 def materialize(seed: Path, data: bytes, dest: Path) -> Path:
@@ -275,6 +334,13 @@ def make_seeds(root: Path) -> dict[str, Path]:
     seeds["scenario_yaml"].write_text(
         "name: ferry\nseed: 3\norigin: {lat: 63.4336, lon: 10.3926, height: 0.0}\n"
         "environment: {harbour: default, water: flat}\nrig: milliampere\ntrajectory: ferry.csv\nvessels:\n" + vessels
+    )
+
+    seeds["campaign_yaml"] = _own_dir(root, "campaign_yaml") / "campaign.yaml"
+    seeds["campaign_yaml"].write_text(
+        "scenarios: [ferry_crossing]\nseeds: [1, 2]\nduration: 5\noffset: 2.5\n"
+        "synthetic: {ray_drop: [0.0, 0.1], range_noise: [0.02, 0.05]}\nreference: {ray_drop: 0.05}\n"
+        "tunings: [synthetic]\nreference_seed_offset: 1000\ncomparison: {gate: 10.0}\n"
     )
 
     truth = gt_synth.turning_vessel(duration=20.0)

@@ -1,10 +1,12 @@
 """Measure how many mutated files make each reader escape with something other than InputError.
 
-    .venv/bin/python tests/fuzz/measure_escapes.py [N per target] [target ...] [--save DIR]
+    .venv/bin/python tests/fuzz/measure_escapes.py [N per target] [target ...] [--save DIR] [--kinds K1,K2]
 
 Prints one line per target and, last, JSON ``{target: {"n": N, "escaped": k, "rate": k/N,
-"types": {...}}}``. With ``--save DIR`` every escaping mutant is written to DIR/<target>/ (the
-source of the regression corpus). Deterministic: mutant i of a target uses ``random.Random(i)``.
+"accepted": a, "types": {...}}}`` (``accepted``: mutants read without any error).
+With ``--save DIR`` every escaping mutant is written to DIR/<target>/ (the
+source of the regression corpus). ``--kinds`` draws the mutations from those kinds only (one family,
+e.g. ``yaml_alias``). Deterministic: mutant i of a target uses ``random.Random(i)``.
 """
 
 from __future__ import annotations
@@ -20,7 +22,7 @@ from pathlib import Path
 
 sys.path[:0] = [str(Path(__file__).parent), str(Path(__file__).parents[1] / "groundtruth")]
 
-from fuzz_helpers import TARGETS, apply, escape, make_seeds, materialize, random_mutations  # noqa: E402
+from fuzz_helpers import TARGETS, apply, make_seeds, materialize, outcome, random_mutations  # noqa: E402
 
 
 def main(argv: list[str]) -> None:
@@ -28,6 +30,11 @@ def main(argv: list[str]) -> None:
     if "--save" in argv:
         i = argv.index("--save")
         save = Path(argv[i + 1])
+        argv = argv[:i] + argv[i + 2 :]
+    kinds = None
+    if "--kinds" in argv:
+        i = argv.index("--kinds")
+        kinds = tuple(argv[i + 1].split(","))
         argv = argv[:i] + argv[i + 2 :]
     n = int(argv[0]) if argv else 200
     names = argv[1:] or list(TARGETS)
@@ -40,11 +47,13 @@ def main(argv: list[str]) -> None:
             data = seed.read_bytes()
             types: collections.Counter[str] = collections.Counter()
             t0 = time.perf_counter()
+            accepted = 0
             for i in range(n):
-                muts = random_mutations(random.Random(i), TARGETS[name].text)
+                muts = random_mutations(random.Random(i), TARGETS[name].text, kinds)
                 mutant = apply(data, muts)
                 path = materialize(seed, mutant, root / "mutant")
-                exc = escape(name, path)
+                exc, read = outcome(name, path)
+                accepted += read
                 if exc is not None:
                     frame = traceback.extract_tb(exc.__traceback__)[-1]
                     key = f"{type(exc).__name__} at {Path(frame.filename).name}:{frame.lineno}"
@@ -59,10 +68,12 @@ def main(argv: list[str]) -> None:
                 "n": n,
                 "escaped": k,
                 "rate": round(k / n, 4),
+                "accepted": accepted,
                 "seconds": round(time.perf_counter() - t0, 2),
                 "types": dict(types.most_common()),
             }
-            print(f"{name:14s} {k:4d}/{n} = {100 * k / n:5.1f} %  {dict(types.most_common(4))}", flush=True)
+            common = dict(types.most_common(4))
+            print(f"{name:14s} {k:4d}/{n} = {100 * k / n:5.1f} %  accepted {accepted:4d}  {common}", flush=True)
     print(json.dumps(out))
 
 

@@ -9,7 +9,7 @@ import traceback
 from pathlib import Path
 
 import pytest
-from fuzz_helpers import BINARY_KINDS, TARGETS, TEXT_KINDS, apply, escape, materialize
+from fuzz_helpers import BINARY_KINDS, FAMILY_KINDS, TARGETS, TEXT_KINDS, apply, escape, materialize
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -18,8 +18,8 @@ BAG_TARGETS = ["ros1", "mcap", "sqlite3"]
 _SETTINGS = dict(deadline=None, derandomize=True, database=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 
 
-def mutations(text: bool) -> st.SearchStrategy:
-    kinds = BINARY_KINDS + (TEXT_KINDS if text else ())
+def mutations(text: bool, kinds: tuple[str, ...] | None = None) -> st.SearchStrategy:
+    kinds = kinds or BINARY_KINDS + (TEXT_KINDS if text else ())
     one = st.tuples(st.sampled_from(kinds), st.integers(0, 2**30), st.integers(0, 2**16))
     return st.lists(one, min_size=1, max_size=3)
 
@@ -38,6 +38,16 @@ def _check(target: str, seeds: dict[str, Path], work: Path, muts: list) -> None:
 @given(data=st.data())
 def test_text_and_mat_readers_raise_only_input_error(target: str, seeds: dict[str, Path], tmp_path: Path, data) -> None:
     _check(target, seeds, tmp_path, data.draw(mutations(TARGETS[target].text)))
+
+
+@pytest.mark.parametrize("target", ["scenario_yaml", "campaign_yaml", "scenario_csv", "gpx", "nmea", "rtklib", "gnss_csv"])
+@settings(max_examples=40, **_SETTINGS)
+@given(data=st.data())
+def test_alias_depth_huge_and_non_finite_numbers_raise_only_input_error(
+    target: str, seeds: dict[str, Path], tmp_path: Path, data
+) -> None:
+    """YAML alias bombs, deep nesting and huge integers; nan/inf, a no-break space or a non-ASCII digit in a number."""
+    _check(target, seeds, tmp_path, data.draw(mutations(True, FAMILY_KINDS)))
 
 
 @pytest.mark.parametrize("target", BAG_TARGETS)

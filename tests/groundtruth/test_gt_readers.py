@@ -100,7 +100,7 @@ PT = '<trkpt lat="{lat}" lon="10.39"><ele>1</ele><time>{time}</time></trkpt>\n'
         ("<trkpt lat='63'", "not well-formed XML", "line 2"),
         (
             PT.format(lat="63.43", time="2020-09-15T10:00:00Z") + PT.format(lat="abc", time="2020-09-15T10:00:01Z"),
-            "malformed GPX",
+            "expected a number for latitude, got 'abc'",
             "line 3",
         ),
         (
@@ -131,7 +131,7 @@ PT = '<trkpt lat="{lat}" lon="10.39"><ele>1</ele><time>{time}</time></trkpt>\n'
         ),
         (
             PT.format(lat="63.43", time="2020-09-15T10:00:00Z") + PT.format(lat="nan", time="2020-09-15T10:00:01Z"),
-            "not a finite",
+            "expected a finite number for latitude, got 'nan'",
             "line 3",
         ),
         (PT.format(lat="63.43", time="2020-09-15T10:00:00Z"), "at least 2 fixes", None),
@@ -344,16 +344,16 @@ def test_csv_headerless_named_columns_quality_naive_iso(tmp_path: Path) -> None:
 @pytest.mark.parametrize(
     ("text", "match", "where"),
     [
-        ("time,lat,lon\n1600164000,63.43,10.39\n15.09.2020 10:00,63.43,10.39\n", "ISO 8601", "line 3, column time"),
+        ("time,lat,lon\n1600164000,63.43,10.39\n15.09.2020 10:00,63.43,10.39\n", "ISO 8601", "line 3"),
         ("time,lat,lon\n1600164000,63.43,10.39\n1600164001,63.43\n", "expected 3 fields", "line 3"),
-        ("time,lat,lon\n1600164000,63.43,10.39\n1600164001,N63,10.39\n", "expected a number", "line 3, column lat"),
-        ("time,lat,lon\n1600164000,63.43,10.39\n1600164001,nan,10.39\n", "not a finite", "line 3"),
+        ("time,lat,lon\n1600164000,63.43,10.39\n1600164001,N63,10.39\n", "expected a number for lat", "line 3"),
+        ("time,lat,lon\n1600164000,63.43,10.39\n1600164001,nan,10.39\n", "expected a finite number for lat", "line 3"),
         ("time,lat,lon\n1600164000,63.43,10.39\n1600164000,63.43,10.39\n", "duplicated", "line 3"),
         ("time,lat,lon\n1600164000,63.43,10.39\n1600163999,63.43,10.39\n", "decreasing", "line 3"),
         (
             "time,lat,lon,quality\n1600164000,63.43,10.39,4\n1600164001,63.43,10.39,4.5\n",
-            "integer quality",
-            "line 3, column quality",
+            "integer quality code for quality",
+            "line 3",
         ),
         ("time,latitude,lng,lon\n1600164000,63.43,10.39,10.39\n", "more than one lon", "line 1"),
         ("time,x,y\n1600164000,63.43,10.39\n1600164001,63.43,10.39\n", "no lat, lon column", "line 1"),

@@ -147,3 +147,24 @@ def test_yaml_syntax_error_names_the_line(tmp_path: Path):
 def test_writer_refuses_other_suffixes(tmp_path: Path):
     with pytest.raises(InputError, match=r"\.yaml or \.yml"):
         save_scenario(builtin_scenario("ferry_crossing"), tmp_path / "x.txt")
+
+
+@pytest.mark.parametrize(
+    ("extra", "pattern"),
+    [
+        ("description: &d x\nname2: *d\n", r"line \d+, column 14: anchor &d: YAML anchors and aliases are not accepted"),
+        ("description: " + "[" * 100 + "]" * 100 + "\n", r"line \d+, column 77: nested deeper than 64 levels"),
+        ("seed: " + "1" * 5000 + "\n", r"line \d+, column 7: integer of 5000 characters is too large"),
+        ("seed: 99999999999999999999\n", r"line \d+, column 7: integer 99999999999999999999 is too large"),
+        ("origin: {lat: .nan, lon: 10.0}\n", r"line \d+, column 15: expected a finite number, got \.nan"),
+        ("origin: {lat: 63.0, lon: nan}\n", r"line 1, field origin\.lon: Input should be a finite number"),
+        ("origin: {lat: 63.0, lon: 10.0, height: 1.0e+400}\n", r"line \d+, column 40: expected a finite number"),
+    ],
+)
+def test_hostile_yaml_is_refused_with_the_line(saved, extra, pattern):  # type: ignore[no-untyped-def]
+    path, data = saved
+    text = yaml.safe_dump({k: v for k, v in data.items() if k not in ("description", "seed", "origin")}, sort_keys=False)
+    path.write_text(extra + text)
+    with pytest.raises(InputError, match=pattern) as info:
+        load_scenario(path)
+    assert str(info.value).startswith(f"{path}: ")

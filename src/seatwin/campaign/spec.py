@@ -25,8 +25,9 @@ from typing import Any
 
 from pydantic import Field, field_validator
 
-from seatwin.errors import InputError, ParameterError, read_text
+from seatwin.errors import InputError, ParameterError
 from seatwin.evaluation.compare import CompareOptions
+from seatwin.safe_yaml import Lines, line_of, load_yaml
 from seatwin.settings import Seeds, Settings, validated
 from seatwin.sim.settings import SimulationSettings
 
@@ -144,16 +145,9 @@ def load_campaign(path: str | os.PathLike[str]) -> CampaignSpec:
     Scenario files, tuning files and the file-valued settings (``radar_config``, ``harbour``) are
     relative to the campaign file and are made absolute here, so every job names the same file.
     """
-    import yaml
-
     path = Path(path)
-    text = read_text(path, "a campaign YAML file")
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        where = f"line {mark.line + 1}, column {mark.column + 1}" if mark is not None else None
-        raise InputError(path, f"not valid YAML: {getattr(exc, 'problem', None) or exc}", where=where) from None
+    lines: Lines = {}
+    data = load_yaml(path, "a campaign YAML file", lines)
     if not isinstance(data, dict):
         raise InputError(path, f"expected a mapping of campaign fields at the top level, got {type(data).__name__}")
     base = path.resolve().parent
@@ -168,4 +162,10 @@ def load_campaign(path: str | os.PathLike[str]) -> CampaignSpec:
                     section[name] = [_resolve(x, base) for x in section[name]]
                 elif name in section:
                     section[name] = _resolve(section[name], base)
-    return validated(CampaignSpec, data, source=path)
+    try:
+        return validated(CampaignSpec, data, source=path)
+    except InputError as exc:
+        line = None if exc.where is None else line_of(lines, (exc.where,))
+        if line is None:
+            raise
+        raise InputError(path, exc.detail, where=f"line {line}, field {exc.where}") from None

@@ -80,6 +80,18 @@ def register(app: typer.Typer) -> None:
             metavar="M/S",
             help="Single antenna: below this speed the course over ground is not used as heading (flagged, interpolated).",
         ),
+        max_speed: float = typer.Option(
+            30.0,
+            "--max-speed",
+            metavar="M/S",
+            help="A fix further from the one before than this speed allows is an error naming its line (a teleport).",
+        ),
+        max_turn_rate: float = typer.Option(
+            180.0,
+            "--max-turn-rate",
+            metavar="DEG/S",
+            help="A one-sample heading spike (> 90° and back) turning faster than this is an error naming the fixes.",
+        ),
     ) -> None:
         from seatwin.cli.parsing import parse_origin, parse_vessel
         from seatwin.groundtruth import compute_ground_truth, write_outputs
@@ -94,6 +106,8 @@ def register(app: typer.Typer) -> None:
             max_gap_s=max_gap,
             smooth_s=smooth,
             min_cog_speed=min_cog_speed,
+            max_speed=max_speed,
+            max_turn_rate=max_turn_rate,
         )
         written = write_outputs(result, out, quality_json=quality, plots_dir=plots)
         for v_no, v in enumerate(result.vessels, start=1):

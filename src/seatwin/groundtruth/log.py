@@ -13,6 +13,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seatwin.errors import InputError
+from seatwin.geo import GeodeticOrigin, llh_to_ned_flat
+from seatwin.scenario.plausibility import MAX_SPEED, first_teleport
+
+HEIGHT_RANGE_M = (-11_000.0, 100_000.0)
+"""Heights a GNSS fix can have [m] (the deepest sea to near space); beyond is a corrupt number."""
 
 QUALITY_NAMES: dict[str, dict[int, str]] = {
     # NMEA 0183 GGA field 6.
@@ -117,9 +122,42 @@ def validate_log(log: AntennaLog) -> None:
     bad = np.flatnonzero((log.lon < -180.0) | (log.lon > 360.0))
     if bad.size:
         raise InputError(log.source, f"longitude {log.lon[bad[0]]!r} outside [-180, 360] degrees", where=_where(log, int(bad[0])))
+    if log.height is not None:
+        lo, hi = HEIGHT_RANGE_M
+        bad = np.flatnonzero((log.height < lo) | (log.height > hi))
+        if bad.size:
+            raise InputError(
+                log.source, f"height {float(log.height[bad[0]])!r} outside [{lo:g}, {hi:g}] m", where=_where(log, int(bad[0]))
+            )
     steps = np.diff(log.time)
     bad = np.flatnonzero(steps <= 0)
     if bad.size:
         i = int(bad[0]) + 1
         kind = "duplicated" if steps[i - 1] == 0 else "decreasing (non-monotonic)"
         raise InputError(log.source, f"{kind} time {log.time[i]!r} after {log.time[i - 1]!r}", where=_where(log, i))
+
+
+def check_log_motion(log: AntennaLog, max_speed: float = MAX_SPEED) -> None:
+    """Raise :class:`InputError` at the first fix that implies a teleport: further from the fix before
+    than ``max_speed`` [m/s] allows (the same check a scenario CSV gets when it is read,
+    :func:`seatwin.scenario.plausibility.first_teleport`).
+
+    A receiver does not put a harbour vessel 100 km away for one fix; such a fix is a corrupt
+    line or a mistyped number (``-0`` for a longitude), so it is an error naming the line, never
+    dropped and interpolated over: the ground truth is the reference everything else is judged by.
+    """
+    lon = np.unwrap(log.lon, period=360.0)
+    origin = GeodeticOrigin(float(log.lat[0]), float(lon[0]), 0.0)
+    north, east, _ = llh_to_ned_flat(log.lat, lon, np.zeros_like(log.lat), origin)
+    jump = first_teleport(log.time, north, east, max_speed)
+    if jump is None:
+        return
+    k = jump.index
+    others = f"; {jump.count} steps between fixes in the file are that fast" if jump.count > 1 else ""
+    raise InputError(
+        log.source,
+        f"fix at latitude {float(log.lat[k + 1])!r}, longitude {float(log.lon[k + 1])!r} is {jump.step:.4g} m from the fix at "
+        f"{_where(log, k)}, {jump.dt:.3g} s before ({jump.speed:.4g} m/s, faster than max_speed {max_speed:g} m/s): "
+        f"a teleport (a corrupt line or mistyped number?){others}",
+        where=_where(log, k + 1),
+    )

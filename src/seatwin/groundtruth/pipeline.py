@@ -19,11 +19,11 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from seatwin.errors import ParameterError
+from seatwin.errors import InputError, ParameterError
 from seatwin.geo import GeodeticOrigin
 from seatwin.geo.flat_earth import Meridian
 from seatwin.groundtruth.detect import read_antenna_log
-from seatwin.groundtruth.log import AntennaLog
+from seatwin.groundtruth.log import AntennaLog, check_log_motion
 from seatwin.groundtruth.resample import DEFAULT_MAX_GAP_S, DEFAULT_RATE_HZ, check_rate, common_clock, resample_log
 from seatwin.groundtruth.vessel import (
     DEFAULT_EPS_THRESHOLD_M,
@@ -34,6 +34,7 @@ from seatwin.groundtruth.vessel import (
     build_vessel,
 )
 from seatwin.scenario.model import Role, Scenario, Trajectory, Vessel
+from seatwin.scenario.plausibility import MAX_SPEED, MAX_TURN_RATE, first_heading_spike, first_teleport
 
 
 @dataclass
@@ -67,11 +68,17 @@ def compute_ground_truth(
     max_gap_s: float = DEFAULT_MAX_GAP_S,
     smooth_s: float = DEFAULT_SMOOTH_S,
     min_cog_speed: float = DEFAULT_MIN_COG_SPEED,
+    max_speed: float = MAX_SPEED,
+    max_turn_rate: float = MAX_TURN_RATE,
     logs: dict[Path, AntennaLog] | None = None,
 ) -> GroundTruthResult:
     """Read every vessel's antenna files (or take them from ``logs``) and build the ground truth.
 
     Bad settings raise :class:`ParameterError` naming the parameter (``vessels``, ``rate_hz``, …).
+    The checks a scenario CSV gets when it is read (:mod:`seatwin.scenario.plausibility`) are made
+    here, so the CSV written is one seatwin reads back: a fix that moves faster than ``max_speed``
+    [m/s] is an :class:`InputError` naming its file and line, and so is a vessel whose heading
+    spikes for one sample faster than ``max_turn_rate`` [°/s] (naming the nearest fix of each antenna).
     """
     if not vessels:
         raise ParameterError("vessels", "give at least one vessel")
@@ -87,6 +94,9 @@ def compute_ground_truth(
         raise ParameterError("smooth_s", f"must be zero or a positive number of seconds, got {smooth_s!r}")
     if not np.isfinite(min_cog_speed) or min_cog_speed < 0:
         raise ParameterError("min_cog_speed", f"must be zero or a positive speed in m/s, got {min_cog_speed!r}")
+    for param, value in (("max_speed", max_speed), ("max_turn_rate", max_turn_rate)):
+        if not value > 0:
+            raise ParameterError(param, f"must be a positive number (inf: no check), got {value!r}")
     if meridian not in ("correct", "printed"):
         raise ParameterError("meridian", f"expected 'correct' or 'printed', got {meridian!r}")
     logs = dict(logs or {})
@@ -94,23 +104,58 @@ def compute_ground_truth(
         for f in spec.files:
             if f not in logs:
                 logs[f] = read_antenna_log(f)
+            check_log_motion(logs[f], max_speed)
     all_logs = [logs[f] for spec in vessels for f in spec.files]
     time = common_clock(all_logs, rate_hz)
     truths = []
     for spec in vessels:
         antennas = [resample_log(logs[f], time, max_gap_s) for f in spec.files]
-        truths.append(
-            build_vessel(
-                spec,
-                antennas,
-                origin,
-                meridian=meridian,
-                eps_threshold_m=eps_threshold_m,
-                smooth_s=smooth_s,
-                min_cog_speed=min_cog_speed,
-            )  # fmt: skip
+        truth = build_vessel(
+            spec,
+            antennas,
+            origin,
+            meridian=meridian,
+            eps_threshold_m=eps_threshold_m,
+            smooth_s=smooth_s,
+            min_cog_speed=min_cog_speed,
         )
+        check_vessel_motion(truth, max_speed, max_turn_rate)
+        truths.append(truth)
     return GroundTruthResult(origin, float(rate_hz), meridian, float(max_gap_s), time, truths)
+
+
+def _nearest_fixes(truth: VesselGroundTruth, t: float) -> str:
+    """The fix of each antenna nearest time ``t``, as ``FILE line N``."""
+    out = []
+    for a in truth.antennas:
+        log = a.log
+        k = int(np.clip(np.searchsorted(log.time, t), 1, len(log) - 1))
+        k = k if abs(log.time[k] - t) < abs(log.time[k - 1] - t) else k - 1
+        where = f"line {int(log.lines[k])}" if log.lines is not None else f"fix {k + 1}"
+        out.append(f"{log.source} {where}")
+    return ", ".join(out)
+
+
+def check_vessel_motion(truth: VesselGroundTruth, max_speed: float = MAX_SPEED, max_turn_rate: float = MAX_TURN_RATE) -> None:
+    """An :class:`InputError` if the vessel's ground truth holds a teleport or a heading spike, the
+    checks its Gemini CSV would fail when read (:mod:`seatwin.scenario.plausibility`)."""
+    jump = first_teleport(truth.time, truth.north, truth.east, max_speed)
+    if jump is not None:
+        t = float(truth.time[jump.index + 1])
+        raise InputError(
+            _nearest_fixes(truth, t),
+            f"vessel {truth.name!r} moves {jump.step:.4g} m in {jump.dt:.3g} s ({jump.speed:.4g} m/s) at t = {t:.3f}, "
+            f"faster than max_speed {max_speed:g} m/s: a teleport",
+        )
+    spike = first_heading_spike(truth.time, np.degrees(truth.heading), max_turn_rate)
+    if spike is not None:
+        t = float(truth.time[spike.index])
+        raise InputError(
+            _nearest_fixes(truth, t),
+            f"vessel {truth.name!r} heading ({truth.heading_source}) jumps {spike.jump:.1f}° and back at t = {t:.3f} "
+            f"(from {spike.before:.1f}° to {spike.at:.1f}° to {spike.after:.1f}° within {spike.span:.3g} s), faster than "
+            f"max_turn_rate {max_turn_rate:g} °/s: a heading spike (a corrupt fix?)",
+        )
 
 
 def write_outputs(

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from seatwin.errors import InputError, parse_csv, read_text
+from seatwin.errors import NUMBER, InputError, parse_csv, parse_finite, read_text
 from seatwin.groundtruth.log import AntennaLog
 
 _NAMES = {
@@ -26,24 +26,26 @@ _NAMES = {
 }
 
 
-def _parse_time(text: str, path: Path, where: str) -> float:
-    s = text.strip()
+def _parse_time(text: str, path: Path, line: int) -> float:
+    """POSIX seconds (ASCII digits) or an ISO 8601 time (UTC when it has no zone)."""
+    s = text.strip(" \t")
+    if NUMBER.fullmatch(s) is None and s.isascii():
+        try:
+            t = dt.datetime.fromisoformat(s)
+            return (t if t.tzinfo is not None else t.replace(tzinfo=dt.UTC)).timestamp()
+        except (ValueError, OverflowError):
+            pass
     try:
-        return float(s)
-    except ValueError:
-        pass
-    try:
-        t = dt.datetime.fromisoformat(s)
-    except ValueError:
-        raise InputError(path, f"expected POSIX seconds or an ISO 8601 time, got {text!r}", where=where) from None
-    if t.tzinfo is None:
-        t = t.replace(tzinfo=dt.UTC)
-    return t.timestamp()
+        return parse_finite(s, path, "time", line)
+    except InputError:
+        raise InputError(
+            path, f"expected POSIX seconds or an ISO 8601 time for time, got {text!r}", where=f"line {line}"
+        ) from None
 
 
 def _looks_like_data(cell: str) -> bool:
     try:
-        _parse_time(cell, Path(), "")
+        _parse_time(cell, Path(), 0)
         return True
     except InputError:
         return False
@@ -96,16 +98,14 @@ def read_csv_log(path: str | Path) -> AntennaLog:
             raise InputError(path, f"expected {width} fields, got {len(row)}", where=f"line {line_no}")
         lines[j] = line_no
         for key, i in cols.items():
-            where = f"line {line_no}, column {header[i]}"
             if key == "time":
-                out[key][j] = _parse_time(row[i], path, where)
+                out[key][j] = _parse_time(row[i], path, line_no)
                 continue
-            try:
-                v = float(row[i])
-            except ValueError:
-                raise InputError(path, f"expected a number, got {row[i]!r}", where=where) from None
-            if key == "quality" and (not np.isfinite(v) or v != int(v)):
-                raise InputError(path, f"expected an integer quality code, got {row[i]!r}", where=where)
+            v = parse_finite(row[i], path, header[i], line_no)
+            if key == "quality" and v != int(v):
+                raise InputError(
+                    path, f"expected an integer quality code for {header[i]}, got {row[i]!r}", where=f"line {line_no}"
+                )
             out[key][j] = v
     return AntennaLog(
         time=out["time"],

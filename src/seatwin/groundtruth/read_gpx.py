@@ -8,10 +8,25 @@ from pathlib import Path
 
 import numpy as np
 
-from seatwin.errors import InputError, read_text
+from seatwin.errors import InputError, parse_finite, read_text
 from seatwin.groundtruth.log import AntennaLog
 
 _TRKPT = re.compile(r"<(?:\w+:)?trkpt\b")
+_TRKPT_TAG = re.compile(r"<(?:\w+:)?trkpt\b([^>]*)>")
+_LATLON = re.compile(r"\b(lat|lon)\s*=\s*(?:\"([^\"]*)\"|'([^']*)')")
+_ELE = re.compile(r"<(?:\w+:)?ele>([^<]*)<")
+
+
+def _check_numbers(text: str, path: Path) -> None:
+    """Track-point latitudes, longitudes and elevations must be ASCII decimal numbers as GPX's
+    ``xsd:decimal`` says (``float()``, which gpxpy uses, also takes ``nan``, ``1_0`` or a no-break space)."""
+    names = {"lat": "latitude", "lon": "longitude"}
+    for m in _TRKPT_TAG.finditer(text):
+        line = text.count("\n", 0, m.start()) + 1
+        for a in _LATLON.finditer(m.group(1)):
+            parse_finite(a.group(2) if a.group(2) is not None else a.group(3), path, names[a.group(1)], line)
+    for m in _ELE.finditer(text):
+        parse_finite(m.group(1).strip(" \t\r\n"), path, "elevation", text.count("\n", 0, m.start()) + 1)
 
 
 def _point_lines(text: str) -> list[int]:
@@ -31,6 +46,7 @@ def read_gpx(path: str | Path) -> AntennaLog:
 
     path = Path(path)
     text = read_text(path, "a GPX file")
+    _check_numbers(text, path)
     try:
         gpx = gpxpy.parse(text)
     except gpxpy.gpx.GPXXMLSyntaxException as exc:

@@ -48,12 +48,9 @@ def _split(line: str, path: Path, line_no: int) -> tuple[str, list[str]] | None:
     if star < 0:
         raise InputError(path, f"{kind} sentence without checksum (*hh)", where=f"line {line_no}")
     body, given = sentence[1:star], sentence[star + 1 :].strip()
-    try:
-        expected = int(given, 16)
-        if len(given) != 2:
-            raise ValueError
-    except ValueError:
-        raise InputError(path, f"checksum must be two hex digits, got {given!r}", where=f"line {line_no}") from None
+    if not re.fullmatch(r"[0-9A-Fa-f]{2}", given):
+        raise InputError(path, f"checksum must be two hex digits, got {given!r}", where=f"line {line_no}")
+    expected = int(given, 16)
     actual = nmea_checksum(body)
     if actual != expected:
         raise InputError(path, f"checksum mismatch: sentence says {expected:02X}, computed {actual:02X}", where=f"line {line_no}")
@@ -94,7 +91,7 @@ def _date(day: int, month: int, year: int, path: Path, line_no: int) -> float:
 def read_nmea(path: str | Path, date: dt.date | None = None) -> AntennaLog:
     """Read GGA fixes from an NMEA 0183 log. ``date`` (UTC) is used only if the file has no RMC/ZDA."""
     path = Path(path)
-    text_lines = read_text(path, "NMEA 0183 sentences", encoding="ascii").splitlines()
+    text_lines = read_text(path, "NMEA 0183 sentences", encoding="ascii").split("\n")
 
     # Fixes as (time of day, lat, lon, height, quality, line, index of the dating sentence before it).
     fixes: list[tuple[float, float, float, float, int, int, int]] = []
@@ -145,12 +142,9 @@ def read_nmea(path: str | Path, date: dt.date | None = None) -> AntennaLog:
             if "" in f[:4]:
                 continue
             tod = _time_of_day(f[0], path, line_no)
-            try:
-                d, mo, y = int(f[1]), int(f[2]), int(f[3])
-            except ValueError:
-                raise InputError(
-                    path, f"expected ZDA day,month,year, got {','.join(f[1:4])!r}", where=f"line {line_no}"
-                ) from None
+            if not all(re.fullmatch(r"[0-9]{1,4}", x) for x in f[1:4]):
+                raise InputError(path, f"expected ZDA day,month,year, got {','.join(f[1:4])!r}", where=f"line {line_no}")
+            d, mo, y = int(f[1]), int(f[2]), int(f[3])
             dates.append((_date(d, mo, y, path, line_no), tod))
 
     if not fixes:

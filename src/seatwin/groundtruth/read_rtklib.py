@@ -18,8 +18,9 @@ from seatwin.errors import InputError, parse_finite, read_text
 from seatwin.groundtruth.gpstime import GPS_EPOCH_POSIX, gps_week_to_posixlike, gpst_to_utc
 from seatwin.groundtruth.log import AntennaLog
 
-_DATETIME = re.compile(r"(\d{4})/(\d{1,2})/(\d{1,2})")
-_CLOCK = re.compile(r"(\d{1,2}):(\d{2}):(\d{2}(?:\.\d*)?)")
+_DATETIME = re.compile(r"(\d{4})/(\d{1,2})/(\d{1,2})", re.ASCII)
+_CLOCK = re.compile(r"(\d{1,2}):(\d{2}):(\d{2}(?:\.\d*)?)", re.ASCII)
+_BLANKS = re.compile(r"[ \t]+")
 
 
 def _header_layout(header: str, path: Path, line_no: int) -> tuple[str, bool]:
@@ -51,7 +52,7 @@ def _time(tok0: str, tok1: str, path: Path, line_no: int) -> float:
         if not (1 <= mo <= 12 and 1 <= dd <= 31 and h < 24 and mi < 60 and s < 61):
             raise InputError(path, f"invalid date/time {tok0} {tok1}", where=f"line {line_no}")
         return calendar.timegm((y, mo, dd, 0, 0, 0)) + h * 3600.0 + mi * 60.0 + s
-    if re.fullmatch(r"\d{1,5}", tok0):
+    if re.fullmatch(r"[0-9]{1,5}", tok0):
         tow = _number(tok1, "GPS seconds of week", path, line_no)
         if not 0.0 <= tow < 604_800.0:
             raise InputError(path, f"GPS seconds of week {tok1} outside [0, 604800)", where=f"line {line_no}")
@@ -70,11 +71,13 @@ def _dms(toks: list[str], name: str, path: Path, line_no: int) -> float:
 def read_rtklib_pos(path: str | Path) -> AntennaLog:
     """Read an RTKLIB ``.pos`` solution file (llh) into an :class:`AntennaLog` (UTC times)."""
     path = Path(path)
-    text_lines = read_text(path, "an RTKLIB .pos file").splitlines()
+    # Lines end at LF (CR LF) only and fields are separated by ASCII blanks: Unicode line or space
+    # characters (a no-break space after a number) stay inside a field and make it an error.
+    text_lines = read_text(path, "an RTKLIB .pos file").split("\n")
     system, dms = "GPST", False
     rows: list[tuple[float, float, float, float, int, int]] = []
     for line_no, raw in enumerate(text_lines, start=1):
-        line = raw.strip()
+        line = raw.strip(" \t\r")
         if not line:
             continue
         if line.startswith("%"):
@@ -82,7 +85,7 @@ def read_rtklib_pos(path: str | Path) -> AntennaLog:
             if body and body[0].upper() in ("GPST", "UTC", "JST") or "latitude(" in line.lower() or "ecef" in line.lower():
                 system, dms = _header_layout(line, path, line_no)
             continue
-        toks = line.split()
+        toks = _BLANKS.split(line)
         need = 2 + (6 if dms else 2) + 2  # time, lat, lon, height, Q
         if len(toks) < need:
             raise InputError(
@@ -96,7 +99,7 @@ def read_rtklib_pos(path: str | Path) -> AntennaLog:
             lat, lon = _number(toks[2], "latitude", path, line_no), _number(toks[3], "longitude", path, line_no)
             k = 4
         h = _number(toks[k], "height", path, line_no)
-        if not re.fullmatch(r"\d", toks[k + 1]):
+        if not re.fullmatch(r"[0-9]", toks[k + 1]):
             raise InputError(path, f"expected quality Q 1–6, got {toks[k + 1]!r}", where=f"line {line_no}")
         rows.append((t, lat, lon, h, int(toks[k + 1]), line_no))
     if not rows:

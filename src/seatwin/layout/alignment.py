@@ -30,6 +30,7 @@ import yaml
 from numpy.typing import ArrayLike, NDArray
 
 from seatwin.errors import InputError
+from seatwin.safe_yaml import load_yaml
 
 ALIGNMENT_KEYS = ("rotation_deg", "centre_north", "centre_east", "shift_north", "shift_east")
 
@@ -82,12 +83,7 @@ def read_alignment(path: str | Path) -> tuple[Alignment, dict[str, Any]]:
     """(alignment, provenance) from a YAML file with the keys of :class:`Alignment` (missing: 0) and an
     optional ``provenance`` mapping; an :class:`InputError` naming the file and key otherwise."""
     p = Path(path)
-    if not p.is_file():
-        raise InputError(p, "alignment file not found")
-    try:
-        data = yaml.safe_load(p.read_text())
-    except yaml.YAMLError as exc:
-        raise InputError(p, f"not valid YAML: {exc}") from exc
+    data = load_yaml(p, "an alignment YAML file")
     if not isinstance(data, dict):
         raise InputError(p, f"expected a mapping with {', '.join(ALIGNMENT_KEYS)}")
     unknown = sorted(set(data) - set(ALIGNMENT_KEYS) - {"provenance"})

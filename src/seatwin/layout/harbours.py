@@ -17,12 +17,12 @@ from dataclasses import fields, replace
 from pathlib import Path
 
 import numpy as np
-import yaml
 
 from seatwin.errors import InputError
 from seatwin.layout.alignment import IDENTITY, Alignment, read_alignment
 from seatwin.layout.model import DEFAULT_LAYOUT, HarbourLayout, MooredBoat
 from seatwin.layout.raster import LandRaster, read_land_raster
+from seatwin.safe_yaml import load_yaml
 
 HARBOUR_NAMES = ("default", "ravnkloa", "none")
 """Harbours known by name (besides a raster file ``NAME.yaml``/``NAME.bin``)."""
@@ -163,10 +163,7 @@ def harbour_map(spec: object) -> HarbourLayout | LandRaster | None:
 def read_moored_boats(path: str | Path) -> tuple[MooredBoat, ...]:
     """The ``moored_boats`` list of a YAML file (name, north, east, heading_deg, length, beam, height each)."""
     p = Path(path)
-    try:
-        data = yaml.safe_load(p.read_text())
-    except (OSError, yaml.YAMLError) as exc:
-        raise InputError(p, f"cannot read the moored boats: {exc}") from exc
+    data = load_yaml(p, "a moored-boats YAML file")
     rows = data.get("moored_boats") if isinstance(data, dict) else None
     if not isinstance(rows, list):
         raise InputError(p, "expected a mapping with a list 'moored_boats'")

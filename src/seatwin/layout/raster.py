@@ -11,11 +11,11 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
-import yaml
 
 from seatwin.errors import InputError
 from seatwin.layout.alignment import IDENTITY, Alignment
 from seatwin.layout.model import MooredBoat
+from seatwin.safe_yaml import load_yaml
 
 
 @dataclass(frozen=True)
@@ -69,16 +69,21 @@ def read_land_raster(path: str | Path) -> LandRaster:
     for q in (meta_path, bin_path):
         if not q.is_file():
             raise InputError(q, "map raster file not found (a map raster is NAME.yaml and NAME.bin side by side)")
-    try:
-        meta = yaml.safe_load(meta_path.read_text())
-    except yaml.YAMLError as exc:
-        raise InputError(meta_path, f"not valid YAML: {exc}") from exc
+    meta = load_yaml(meta_path, "a map raster's YAML")
     need = ("map_width", "map_height", "origin_x_coordinate", "origin_y_coordinate")
     for key in need:
         if not isinstance(meta, dict) or key not in meta:
             raise InputError(meta_path, f"missing key {key!r} (expected {', '.join(need)}, grid_resolution)", where=key)
-    w, h = int(meta["map_width"]), int(meta["map_height"])
-    res = float(meta.get("grid_resolution", 1.0))
+    meta.setdefault("grid_resolution", 1.0)
+    for key in ("map_width", "map_height"):
+        if type(meta[key]) is not int or meta[key] <= 0:
+            raise InputError(meta_path, f"expected a positive integer, got {meta[key]!r}", where=key)
+    for key in ("grid_resolution", "origin_x_coordinate", "origin_y_coordinate"):
+        if type(meta[key]) not in (int, float) or (key == "grid_resolution" and not meta[key] > 0):
+            what = "a positive number" if key == "grid_resolution" else "a number"
+            raise InputError(meta_path, f"expected {what}, got {meta[key]!r}", where=key)
+    w, h = meta["map_width"], meta["map_height"]
+    res = float(meta["grid_resolution"])
     data = np.fromfile(bin_path, dtype=np.uint8)
     if data.size != w * h:
         raise InputError(bin_path, f"holds {data.size} bytes, expected map_width × map_height = {w} × {h} = {w * h} bytes")

@@ -16,41 +16,42 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from seatwin.errors import InputError, ParameterError, parse_csv, read_text
+from seatwin.errors import InputError, ParameterError, parse_csv, parse_finite, read_text
 from seatwin.geo import deg_to_rad_heading, rad_to_deg_heading
 from seatwin.scenario.model import Trajectory
+from seatwin.scenario.plausibility import MAX_SPEED, MAX_TURN_RATE, first_heading_spike, first_teleport
 
 TIME_POSIX = "TimeInSecondsPosix"
 TIME_OF_DAY = "TimeOfDay"
-_VESSEL_COLUMN = re.compile(r"^V(\d+)(x|y|Heading)$")
-MAX_SPEED = 30.0
-"""Default bound [m/s] on a vessel's speed between two samples (about 58 kn): faster is a teleport,
-a corrupt or mis-scaled row, and an :class:`InputError`."""
+_VESSEL_COLUMN = re.compile(r"^V([0-9]+)(x|y|Heading)$")
 
 
 def _parse_time_of_day(text: str, date: dt.date, path: Path, line: int) -> float:
     try:
-        t = dt.time.fromisoformat(text.strip())
+        t = dt.time.fromisoformat(text.strip(" \t"))
     except ValueError:
         raise InputError(path, f"expected HH:MM:SS[.fff] in {TIME_OF_DAY}, got {text!r}", where=f"line {line}") from None
     return dt.datetime.combine(date, t, tzinfo=dt.UTC).timestamp()
 
 
 def read_gemini_csv(
-    path: str | os.PathLike[str], date: dt.date | None = None, max_speed: float = MAX_SPEED
+    path: str | os.PathLike[str], date: dt.date | None = None, max_speed: float = MAX_SPEED, max_turn_rate: float = MAX_TURN_RATE
 ) -> dict[int, Trajectory]:
     """Read a Gemini scenario CSV into one trajectory per vessel number.
 
     ``date`` (UTC) is required when the file has ``TimeOfDay`` instead of POSIX seconds.
-    Raises :class:`InputError` naming the file, line and column for any malformed value, for times
-    that do not strictly increase (duplicates and unsorted rows are errors: a scenario is written by
-    a program, and a repeated or misplaced row means a broken export), and for a vessel that moves
-    faster than ``max_speed`` [m/s] between two rows (a teleport).
+    Raises :class:`InputError` naming the file, line and column for any malformed value (numbers
+    in ASCII only: :func:`~seatwin.errors.parse_finite`), for times that do not strictly increase
+    (duplicates and unsorted rows are errors: a scenario is written by a program, and a repeated or
+    misplaced row means a broken export), for a vessel that moves faster than ``max_speed`` [m/s]
+    between two rows (a teleport) and for a one-row heading spike turning faster than
+    ``max_turn_rate`` [°/s] (:mod:`seatwin.scenario.plausibility`; ``inf`` turns either check off).
     """
     check_max_speed(max_speed)
+    check_max_turn_rate(max_turn_rate)
     path = Path(path)
     text = read_text(path, "a Gemini CSV", encoding="utf-8-sig")
-    return parse_csv(path, text, lambda reader: _read_rows(path, reader, date, max_speed))
+    return parse_csv(path, text, lambda reader: _read_rows(path, reader, date, max_speed, max_turn_rate))
 
 
 def check_max_speed(max_speed: float) -> None:
@@ -59,31 +60,46 @@ def check_max_speed(max_speed: float) -> None:
         raise ParameterError("max_speed", f"expected a speed > 0 m/s (inf: no check), got {max_speed!r}")
 
 
-def _check_speeds(
+def check_max_turn_rate(max_turn_rate: float) -> None:
+    """A :class:`ParameterError` unless ``max_turn_rate`` is a positive number of °/s (``inf`` turns the check off)."""
+    if not isinstance(max_turn_rate, int | float) or not max_turn_rate > 0:
+        raise ParameterError("max_turn_rate", f"expected a turn rate > 0 °/s (inf: no check), got {max_turn_rate!r}")
+
+
+def _check_motion(
     path: Path,
     time: NDArray[np.float64],
     data: NDArray[np.float64],
     columns: dict[int, dict[str, int]],
     lines: list[int],
     max_speed: float,
+    max_turn_rate: float,
 ) -> None:
-    dt_ = np.diff(time)
     for n, cols in sorted(columns.items()):
-        step = np.hypot(np.diff(data[:, cols["x"]]), np.diff(data[:, cols["y"]]))
-        with np.errstate(over="ignore", invalid="ignore"):
-            speed = step / dt_
-        bad = np.flatnonzero(~(speed <= max_speed))
-        if bad.size:
-            k = int(bad[0])
+        jump = first_teleport(time, data[:, cols["x"]], data[:, cols["y"]], max_speed)
+        if jump is not None:
+            k = jump.index
             raise InputError(
                 path,
-                f"vessel {n} moves {step[k]:.4g} m in {dt_[k]:.4g} s ({speed[k]:.4g} m/s) after line {lines[k]}, faster than "
-                f"max_speed {max_speed:g} m/s: a teleport (a corrupt or mis-scaled row?)",
+                f"vessel {n} moves {jump.step:.4g} m in {jump.dt:.4g} s ({jump.speed:.4g} m/s) after line {lines[k]}, faster "
+                f"than max_speed {max_speed:g} m/s: a teleport (a corrupt or mis-scaled row?)",
                 where=f"line {lines[k + 1]}, columns V{n}x, V{n}y",
+            )
+        spike = first_heading_spike(time, data[:, cols["Heading"]], max_turn_rate)
+        if spike is not None:
+            k = spike.index
+            raise InputError(
+                path,
+                f"vessel {n} heading jumps {spike.jump:.1f}° and back (from {spike.before:g}° after line {lines[k - 1]} to "
+                f"{spike.at:g}° to {spike.after:g}° within {spike.span:.3g} s), faster than max_turn_rate "
+                f"{max_turn_rate:g} °/s: a heading spike (a corrupt row?)",
+                where=f"line {lines[k]}, column V{n}Heading",
             )
 
 
-def _read_rows(path: Path, reader: Iterator[list[str]], date: dt.date | None, max_speed: float) -> dict[int, Trajectory]:
+def _read_rows(
+    path: Path, reader: Iterator[list[str]], date: dt.date | None, max_speed: float, max_turn_rate: float
+) -> dict[int, Trajectory]:
     header = next(reader, None)
     if header is None:
         raise InputError(path, "empty file, expected a header line")
@@ -100,6 +116,8 @@ def _read_rows(path: Path, reader: Iterator[list[str]], date: dt.date | None, ma
     for i, name in enumerate(header):
         m = _VESSEL_COLUMN.match(name)
         if m:
+            if len(m.group(1)) > 6:
+                raise InputError(path, f"vessel number of {len(m.group(1))} digits in column {name[:20]!r}…", where="line 1")
             columns.setdefault(int(m.group(1)), {})[m.group(2)] = i
     if not columns:
         raise InputError(path, "no vessel columns V{n}x, V{n}y, V{n}Heading", where="line 1")
@@ -120,13 +138,7 @@ def _read_rows(path: Path, reader: Iterator[list[str]], date: dt.date | None, ma
             if i == time_col and not posix:
                 values.append(_parse_time_of_day(cell, date, path, line_no))  # type: ignore[arg-type]
                 continue
-            try:
-                v = float(cell)
-            except ValueError:
-                raise InputError(path, f"expected a number, got {cell!r}", where=f"line {line_no}, column {header[i]}") from None
-            if not np.isfinite(v):
-                raise InputError(path, f"expected a finite number, got {cell!r}", where=f"line {line_no}, column {header[i]}")
-            values.append(v)
+            values.append(parse_finite(cell, path, header[i], line_no))
         rows.append(values)
         row_lines.append(line_no)
         time_text.append(row[time_col].strip())
@@ -143,7 +155,7 @@ def _read_rows(path: Path, reader: Iterator[list[str]], date: dt.date | None, ma
             f"{kind} time {time_text[k]} after {time_text[k - 1]} (line {row_lines[k - 1]}); times must increase",
             where=f"line {row_lines[k]}",
         )
-    _check_speeds(path, time, data, columns, row_lines, max_speed)
+    _check_motion(path, time, data, columns, row_lines, max_speed, max_turn_rate)
     return {
         n: Trajectory(
             time=time,

@@ -14,16 +14,16 @@ import math
 from pathlib import Path
 from typing import Any, Literal
 
-import yaml
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from seatwin.errors import InputError
+from seatwin.safe_yaml import load_yaml
 
 
 class SensorTuning(BaseModel):
     """Measurement noise, detection and clutter of one sensor."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
 
     r_range: float = Field(gt=0, description="Range variance [m²] (thesis R_li,11).")
     r_bearing: float = Field(gt=0, description="Bearing variance [rad²] (thesis R_li,22; R_c,11 for the camera).")
@@ -40,7 +40,7 @@ class SensorTuning(BaseModel):
 class TrackerConfig(BaseModel):
     """JIPDA + EKF tracker parameters (thesis ch. 5.1.2–5.1.3)."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
 
     name: str = "custom"
     q_north: float = Field(gt=0, description="Process noise intensity north [m²/s³] (thesis Q11, eq. 5.24).")
@@ -251,8 +251,10 @@ def load_tuning(spec: str | Path) -> TrackerConfig:
     if not path.is_file():
         raise InputError(text, f"not a tuning preset ({', '.join(PRESETS)}) and not a file")
     try:
-        data = json.loads(path.read_text()) if path.suffix == ".json" else yaml.safe_load(path.read_text())
-    except (OSError, ValueError, yaml.YAMLError) as exc:
+        data = json.loads(path.read_text()) if path.suffix == ".json" else load_yaml(path, "a tuning YAML file")
+    except InputError:
+        raise
+    except (OSError, ValueError, RecursionError) as exc:
         raise InputError(path, f"cannot parse tuning file: {exc}") from None
     if not isinstance(data, dict):
         raise InputError(path, "a tuning file must be a mapping of parameter names to values")

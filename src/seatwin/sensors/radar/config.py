@@ -17,7 +17,7 @@ from seatwin.errors import InputError
 
 
 class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", validate_assignment=True)
+    model_config = ConfigDict(extra="forbid", validate_assignment=True, allow_inf_nan=False)
 
 
 class DetectionConfig(_Strict):
@@ -175,17 +175,12 @@ class RadarConfig(_Strict):
 
 def load_radar_config(path: str | Path) -> RadarConfig:
     """Read a radar YAML file; an :class:`InputError` naming the field on bad content."""
-    import yaml
+    from seatwin.safe_yaml import load_yaml
 
     p = Path(path)
-    try:
-        data = yaml.safe_load(p.read_text())
-    except FileNotFoundError:
-        raise InputError(p, "no such radar configuration file") from None
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        where = f"line {mark.line + 1}" if mark is not None else None
-        raise InputError(p, f"not valid YAML: {getattr(exc, 'problem', exc)}", where=where) from None
+    if not p.exists():
+        raise InputError(p, "no such radar configuration file")
+    data = load_yaml(p, "a radar YAML file")
     if data is None:
         data = {}
     if not isinstance(data, dict):
