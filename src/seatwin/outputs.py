@@ -117,13 +117,27 @@ def check_writable(path: PathLike, param: str) -> None:
         raise ParameterError(param, f"cannot write {path}: {base}: {exc.strerror or exc}") from None
 
 
+def refuse_same(path: PathLike, param: str, others: Iterable[PathLike | None]) -> None:
+    """Refuse an output ``path`` that is another output of the same command (one would replace the other)."""
+    real = _real(path)
+    for other in others:
+        if other is not None and _real(other) == real:
+            raise ParameterError(param, f"{path} is given twice as an output (also as {other})")
+
+
 def check_output_file(
-    path: PathLike, param: str, *, inputs: Iterable[PathLike | None] = (), overwrite: bool = False
+    path: PathLike,
+    param: str,
+    *,
+    inputs: Iterable[PathLike | None] = (),
+    overwrite: bool = False,
+    outputs: Iterable[PathLike | None] = (),
 ) -> Path:
-    """Refuse, before any work, an output file that is an input or inside one, a folder, one that exists
-    (unless ``overwrite``) or cannot be written."""
+    """Refuse, before any work, an output file that is an input or inside one, another of the command's
+    ``outputs``, a folder, one that exists (unless ``overwrite``) or cannot be written."""
     path = Path(path)
     refuse_inputs(path, param, inputs)
+    refuse_same(path, param, outputs)
     if os.path.isdir(path):
         raise ParameterError(param, f"{path} is a folder; expected a file name")
     if os.path.lexists(path) and not overwrite:

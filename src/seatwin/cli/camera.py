@@ -6,9 +6,8 @@ from pathlib import Path
 
 import typer
 
-from seatwin.cli.output import overwrite_option
-
 from seatwin.cli.flags import either, old_spelling
+from seatwin.cli.output import overwrite_option
 
 _SNAPSHOT_HELP = (
     "Render the three frontal cameras (left, front, right: 72° apart, 15° down, 82° HFOV, 612 × 512) of a "

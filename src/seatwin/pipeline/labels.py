@@ -45,9 +45,7 @@ def _stamp(msg: Any) -> int:
     return int(msg.header.stamp.sec) * 1_000_000_000 + int(msg.header.stamp.nanosec)
 
 
-def export_coco(
-    run: str | Path, out: str | Path, min_visible_fraction: float = 0.0, *, overwrite: bool = False
-) -> CocoExport:
+def export_coco(run: str | Path, out: str | Path, min_visible_fraction: float = 0.0, *, overwrite: bool = False) -> CocoExport:
     """Every camera image of the recording in ``run`` as PNG in ``out/images`` and ``out/annotations.json``.
 
     Labels whose ``visible_fraction`` is at most ``min_visible_fraction`` are left out (default:

@@ -43,8 +43,8 @@ def simulate_run(
 
         raise ParameterError("start_offset", "give a start time or an offset after the scenario's start, not both")
     sc = scenario if isinstance(scenario, Scenario) else load_scenario(str(scenario), date=date)
-    given = (settings or SimulationSettings()).model_dump()
-    inputs = [*([] if isinstance(scenario, Scenario) else [scenario]), *run_inputs(sc, SimulationSettings.model_construct(**{**given, **changes}))]
+    chosen = SimulationSettings.model_construct(**{**(settings or SimulationSettings()).model_dump(), **changes})
+    inputs = [*([] if isinstance(scenario, Scenario) else [scenario]), *run_inputs(sc, chosen)]
     check_new_run(out, "out", inputs=inputs, overwrite=overwrite)  # the same check as simulate_scenario's, naming ``out``
     if start_offset is not None:
         start = sc.start + float(start_offset)

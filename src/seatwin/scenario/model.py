@@ -8,7 +8,6 @@ the samples (``numpy.gradient``), also interpolated linearly, so they are contin
 from __future__ import annotations
 
 import re
-
 from dataclasses import dataclass, field
 from enum import Enum
 from typing import Any
