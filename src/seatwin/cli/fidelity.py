@@ -6,6 +6,8 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
+
 _JOYRIDE_HELP = (
     "Measure the radar model's fidelity on the joyride dataset (real radar with GNSS ground truth).\n\n"
     "Builds the synthetic replica (ownship and target from the ground truth, the radar model, the same scan "
@@ -73,9 +75,11 @@ def register(app: typer.Typer) -> None:
         progress: bool = typer.Option(
             True, "--progress/--no-progress", help="Progress bar (a line every 10 s when not a terminal)."
         ),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         from seatwin.cli.output import progress_counter, split_list
         from seatwin.fidelity import FidelityOptions, run_fidelity, write_fidelity
+        from seatwin.outputs import check_output_folder
         from seatwin.settings import validated
 
         opts = validated(
@@ -94,6 +98,8 @@ def register(app: typer.Typer) -> None:
                 "ablations": ablations,
             },
         )
+        names = ["fidelity.json", "fidelity.md", *(["index.html"] if html else [])]
+        check_output_folder(out, "out", names, inputs=[mat, radar, tuning], overwrite=overwrite)
         with progress_counter("fidelity (seeds × models)", progress, min_total=1) as advance:
             result = run_fidelity(str(mat), opts, jobs_in=out, workers=workers, address=address, progress=advance)
         paths = write_fidelity(out, result, html=html)

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import typer
 
-from seatwin.cli.output import split_list
+from seatwin.cli.output import overwrite_option, split_list
 from seatwin.errors import ParameterError
 
 _HELP = (
@@ -114,8 +114,10 @@ def register(app: typer.Typer) -> None:
             None, "--address", metavar="RAY_ADDRESS", help="Run on this Ray cluster (e.g. ray://head:10001 or auto)."
         ),
         progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar."),
+        overwrite: bool = overwrite_option(),
     ) -> None:
-        from seatwin.cli.output import check_output_dir, progress_counter
+        from seatwin.cli.output import progress_counter
+        from seatwin.outputs import check_output_folder
         from seatwin.settings import validated
         from seatwin.sweep import SweepSettings, plot_sweep, run_sweep, spearman_by_kind, summarise, write_results
 
@@ -133,7 +135,8 @@ def register(app: typer.Typer) -> None:
                 "tuning": tuning,
             },
         )
-        check_output_dir(out, "out")
+        names = ["sweep.csv", "sweep.json", "sweep.png"]
+        check_output_folder(out, "out", names, inputs=[scenario, tuning], overwrite=overwrite)
         with progress_counter("sweep", progress, min_total=1) as advance:
             result = run_sweep(out, settings, workers=workers, address=address, progress=advance)
         csv_path, json_path = write_results(out, result)
