@@ -61,7 +61,8 @@ def refuse_inputs(path: PathLike, param: str, inputs: Iterable[PathLike | None])
         for folder in _input_folders(Path(inp)):
             if out == folder or out.is_relative_to(folder):
                 where = f"the input {inp}" if folder == real else f"{folder}, the run or bag folder of the input {inp}"
-                raise ParameterError(param, f"{path} lies inside {where}; write outputs outside it")
+                verb = "is" if out == folder else "lies inside"
+                raise ParameterError(param, f"{path} {verb} {where}; write outputs outside it")
 
 
 def _same_file(a: Path, b: Path) -> bool:
