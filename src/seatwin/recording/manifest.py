@@ -23,11 +23,32 @@ RUN_SCENARIO_FILES = ("scenario.yaml", "scenario.csv")
 
 
 def write_manifest(run_dir: Path, data: dict[str, Any]) -> None:
-    """Atomically write ``run_dir/manifest.json``."""
+    """Atomically write ``run_dir/manifest.json``. On a full disk, where even the small temporary file cannot be
+    written, it is removed and the manifest is rewritten in place when the blocks it has hold the new text
+    (a run that fails writes its error this way); otherwise the ``OSError`` is raised, the old manifest intact."""
     path = Path(run_dir) / MANIFEST_NAME
     tmp = path.with_name(path.name + ".part")
-    tmp.write_text(json.dumps(data, indent=2, sort_keys=False, default=_default) + "\n", encoding="utf8")
-    os.replace(tmp, path)
+    text = (json.dumps(data, indent=2, sort_keys=False, default=_default) + "\n").encode("utf8")
+    try:
+        tmp.write_bytes(text)
+        os.replace(tmp, path)
+    except OSError:
+        tmp.unlink(missing_ok=True)
+        if not _rewrite_in_place(path, text):
+            raise
+
+
+def _rewrite_in_place(path: Path, text: bytes) -> bool:
+    """Overwrite ``path`` with ``text`` without allocating: only when its blocks already hold that many bytes."""
+    try:
+        if len(text) > path.stat().st_blocks * 512:
+            return False
+        with path.open("r+b") as f:
+            f.write(text)
+            f.truncate()
+    except OSError:
+        return False
+    return True
 
 
 def read_manifest(run_dir: Path) -> dict[str, Any] | None:
