@@ -67,8 +67,7 @@ def register(app: typer.Typer) -> None:
 
         names = split_list(sensors, "sensors") or ()
         path = Path(system)
-        inputs = [system, path.parent] if path.suffix.lower() == ".xml" else [system]
-        remove_outputs(check_new_run(out, "out", inputs=inputs, overwrite=overwrite, extra=("cosim",)))
+        remove_outputs(check_new_run(out, "out", inputs=[system], overwrite=overwrite, extra=("cosim",)))
         if path.suffix.lower() != ".xml":
             path = export_system(load_scenario(system, date=_date(date)), out / "cosim", step_size=step)["system"]
         result = run_system(
