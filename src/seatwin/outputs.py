@@ -107,8 +107,9 @@ def check_writable(path: PathLike, param: str) -> None:
         name_max, path_max = 255, 4096
     for name in [*missing, path.name]:
         if len(os.fsencode(name)) > name_max:
+            shown = str(path) if len(str(path)) <= 100 else f"{str(path)[:60]}…{str(path)[-20:]}"
             raise ParameterError(
-                param, f"cannot write {path}: a name of {len(os.fsencode(name))} bytes, longer than the {name_max} allowed"
+                param, f"cannot write {shown}: a name of {len(os.fsencode(name))} bytes, longer than the {name_max} allowed"
             )
     if len(os.fsencode(os.path.abspath(path))) >= path_max:
         raise ParameterError(param, f"cannot write {path}: the path is longer than the {path_max} bytes allowed")
