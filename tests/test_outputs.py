@@ -87,10 +87,10 @@ def test_unwritable_outputs_are_refused_before_the_work_and_nothing_is_made(tmp_
     check_output_file(tmp_path / "new" / "deeper" / "t.csv", "out")  # missing folders: fine, made when writing
     assert sorted(tmp_path.iterdir()) == before  # the check wrote nothing
 
-    def read_only(path, flags, mode=0o777):
-        raise OSError(errno.EROFS, os.strerror(errno.EROFS), str(path))
+    def read_only(folder):  # what creating a file in a folder of a read-only file system raises
+        raise OSError(errno.EROFS, os.strerror(errno.EROFS), str(folder))
 
-    monkeypatch.setattr(outputs.os, "open", read_only)
+    monkeypatch.setattr(outputs, "probe_folder", read_only)
     with pytest.raises(ParameterError, match=r"cannot write .*t\.csv: .*Read-only file system"):
         check_output_file(tmp_path / "t.csv", "out")
 

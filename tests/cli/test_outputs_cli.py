@@ -77,10 +77,10 @@ def test_track_refuses_an_existing_or_unwritable_output_before_the_work(recordin
     assert run(["track", str(recording), "--out", str(out / "x.csv")]) == 2  # ENOTDIR
     assert "is not a folder" in _error(capsys)
 
-    def read_only(path, flags, mode=0o777):
-        raise OSError(errno.EROFS, os.strerror(errno.EROFS), str(path))
+    def read_only(folder):  # what creating a file in a folder of a read-only file system raises
+        raise OSError(errno.EROFS, os.strerror(errno.EROFS), str(folder))
 
-    monkeypatch.setattr(seatwin.outputs.os, "open", read_only)
+    monkeypatch.setattr(seatwin.outputs, "probe_folder", read_only)
     assert run(["track", str(recording), "--out", str(tmp_path / "new.csv")]) == 2
     err = _error(capsys)
     assert "--out: cannot write" in err and "new.csv" in err and "Read-only file system" in err
