@@ -30,7 +30,7 @@ def test_the_same_spec_resumes_and_another_is_refused(tmp_path):
     _earlier_results(out)
     claim_folder(out, SPEC, "a.yaml")  # resume: nothing removed
     assert (out / "jobs" / "0123.json").exists() and (out / "results.csv").exists()
-    with pytest.raises(OutputExistsError, match=r"another campaign \(a\.yaml\), not of b\.yaml") as err:
+    with pytest.raises(OutputExistsError, match=r"another campaign \(a\.yaml, not b\.yaml\)") as err:
         claim_folder(out, OTHER, "b.yaml")
     assert err.value.param == "out" and (out / "results.csv").exists()
     assert json.loads((out / SPEC_FILE).read_text())["source"] == "a.yaml"
@@ -49,7 +49,7 @@ def test_overwrite_starts_afresh_and_keeps_a_users_files(tmp_path):
 def test_results_without_a_recorded_spec_are_not_mixed(tmp_path):
     out = tmp_path / "out"
     _earlier_results(out)
-    with pytest.raises(OutputExistsError, match="holds the results of campaign results"):
+    with pytest.raises(OutputExistsError, match="holds campaign results with no record of their settings"):
         claim_folder(out, SPEC, "a.yaml")
     claim_folder(tmp_path / "fresh", SPEC, None)  # a folder with a user's files only is fine
     (tmp_path / "mine").mkdir()
@@ -84,3 +84,22 @@ def test_cli_refuses_another_campaign_before_any_job(tmp_path, capsys):
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and "a.yaml" in err and str(spec) in err and "--overwrite" in err
     assert (out / "jobs" / "0123.json").exists()
+
+
+def test_a_sweep_folder_remembers_its_settings(tmp_path, monkeypatch, capsys):
+    """A finished sweep re-run with the same settings resumes; other settings are refused before any job runs."""
+    import seatwin.campaign.engine
+    from seatwin.sweep import run_sweep
+
+    calls = []
+    monkeypatch.setattr(seatwin.campaign.engine, "run_jobs", lambda jobs, *a, **k: calls.append(len(jobs)) or None)
+    out = tmp_path / "sweep"
+    out.mkdir()
+    (out / "sweep.csv").write_text("an earlier sweep's rows")
+    with pytest.raises(OutputExistsError, match="sweep results with no record of their settings") as err:
+        run_sweep(out, kinds=("noise",), seeds=(1,), duration=5.0)
+    assert err.value.param == "out_dir" and calls == []
+    assert run(["sweep", "ferry_crossing", "--out", str(out), "--kinds", "noise", "--seeds", "1", "--duration", "5"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith(f"seatwin: error: --out: {out} holds sweep results") and "--overwrite" in err
+    assert calls == [] and (out / "sweep.csv").read_text() == "an earlier sweep's rows"

@@ -77,9 +77,9 @@ def register(app: typer.Typer) -> None:
         ),
         overwrite: bool = overwrite_option(),
     ) -> None:
+        from seatwin.campaign.folder import claim_experiment_folder
         from seatwin.cli.output import progress_counter, split_list
         from seatwin.fidelity import FidelityOptions, run_fidelity, write_fidelity
-        from seatwin.outputs import check_output_folder
         from seatwin.settings import validated
 
         opts = validated(
@@ -98,8 +98,16 @@ def register(app: typer.Typer) -> None:
                 "ablations": ablations,
             },
         )
-        names = ["fidelity.json", "fidelity.md", *(["index.html"] if html else [])]
-        check_output_folder(out, "out", names, inputs=[mat, radar, tuning], overwrite=overwrite)
+        claim_experiment_folder(
+            out,
+            "out",
+            kind="fidelity",
+            settings={**opts.model_dump(mode="json"), "html": html},
+            files=[str(mat), None if radar is None else str(radar), tuning],
+            source=str(mat),
+            outputs=("fidelity.json", "fidelity.md", "index.html", "jobs"),
+            overwrite=overwrite,
+        )
         with progress_counter("fidelity (seeds × models)", progress, min_total=1) as advance:
             result = run_fidelity(str(mat), opts, jobs_in=out, workers=workers, address=address, progress=advance)
         paths = write_fidelity(out, result, html=html)

@@ -117,7 +117,6 @@ def register(app: typer.Typer) -> None:
         overwrite: bool = overwrite_option(),
     ) -> None:
         from seatwin.cli.output import progress_counter
-        from seatwin.outputs import check_output_folder
         from seatwin.settings import validated
         from seatwin.sweep import SweepSettings, plot_sweep, run_sweep, spearman_by_kind, summarise, write_results
 
@@ -135,10 +134,8 @@ def register(app: typer.Typer) -> None:
                 "tuning": tuning,
             },
         )
-        names = ["sweep.csv", "sweep.json", "sweep.png"]
-        check_output_folder(out, "out", names, inputs=[scenario, tuning], overwrite=overwrite)
         with progress_counter("sweep", progress, min_total=1) as advance:
-            result = run_sweep(out, settings, workers=workers, address=address, progress=advance)
+            result = run_sweep(out, settings, workers=workers, address=address, progress=advance, overwrite=overwrite)
         csv_path, json_path = write_results(out, result)
         png = plot_sweep(result, out / "sweep.png")
         for kind, by_dir in spearman_by_kind(result, "score").items():
