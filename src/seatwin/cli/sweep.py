@@ -20,7 +20,8 @@ _HELP = (
     "comparison is (no shared draws). The reference model's own distance is the floor. Kinds: noise "
     "(range σ, m), drop (ray-drop probability), dissipation (off/on), mount (yaw bias, deg; /tf_static keeps "
     "the nominal mount). Every run is a job of the campaign engine (in this process, or on Ray with --workers "
-    "/ --address); each job's outcome is kept in --out/jobs, so re-running the command resumes. Writes "
+    "/ --address); each job's outcome is kept in --out/jobs, so re-running the command resumes (other "
+    "settings in the same --out: refused, or with --overwrite started afresh). Writes "
     "sweep.csv, sweep.json (Spearman ρ per kind, direction and seed) and sweep.png into --out."
 )
 
