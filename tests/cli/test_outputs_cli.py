@@ -240,3 +240,13 @@ def test_every_verb_that_writes_has_overwrite():
         if (flags & writers or json_file) and "--overwrite" not in flags:
             missing.append(" ".join(path))
     assert missing == []
+
+
+def test_demo_refuses_an_earlier_demo_before_any_work(tmp_path, capsys):
+    out = tmp_path / "demo"
+    (out / "reality").mkdir(parents=True)
+    (out / "notes.txt").write_text("mine")
+    assert run(["demo", "--out", str(out), "--duration", "1"]) == 2
+    err = _error(capsys)
+    assert f"{out / 'reality'} exists already" in err and "--overwrite" in err
+    assert sorted(p.name for p in out.iterdir()) == ["notes.txt", "reality"]
