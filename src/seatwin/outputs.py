@@ -189,8 +189,10 @@ def check_run_folder(
     then only the entries ``names`` are replaced, and only when ``ours(path)`` says seatwin wrote the run
     there — a user's file of the same name is never replaced. Returns the entries to remove first."""
     path = Path(path)
-    if os.path.isdir(path) and any(os.scandir(path)) and not overwrite:
-        raise OutputExistsError(param, path, "exists and is not empty")
+    if os.path.isdir(path) and not overwrite:
+        with os.scandir(path) as entries:
+            if any(entries):
+                raise OutputExistsError(param, path, "exists and is not empty")
     present = check_output_folder(path, param, names, inputs=inputs, overwrite=True)
     if present and not ours(path):
         raise ParameterError(param, f"{present[0]} was not written by seatwin (no run of seatwin in {path}); not replaced")

@@ -15,6 +15,7 @@ from typing import Any
 from seatwin.campaign.engine import JOBS_DIR, canonical_json
 from seatwin.campaign.results import CAMPAIGN_JSON, RESULTS_CSV
 from seatwin.campaign.spec import CampaignSpec
+from seatwin.errors import ParameterError
 from seatwin.outputs import OutputExistsError, check_writable, refuse_inputs, remove_outputs, write_text_atomic
 
 SPEC_FILE = "campaign-spec.json"
@@ -69,7 +70,7 @@ def claim_experiment_folder(
     record_path = out / f"{kind}-spec.json"
     refuse_inputs(out, param, [source, *files])
     if os.path.lexists(out) and not os.path.isdir(out):
-        raise OutputExistsError(param, out, "exists and is not a folder")
+        raise ParameterError(param, f"{out} exists and is not a folder")
     mine = fingerprint(settings, files)
     recorded = _recorded(record_path)
     present = [out / n for n in (*outputs, record_path.name) if os.path.lexists(out / n)]
