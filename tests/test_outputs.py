@@ -9,6 +9,8 @@ import os
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 import seatwin.outputs as outputs
 from seatwin.errors import ParameterError
@@ -167,3 +169,20 @@ def _umask() -> int:
     mask = os.umask(0)
     os.umask(mask)
     return mask
+
+
+_NAMES = st.text(alphabet="abcXY_.-", min_size=1, max_size=12).filter(lambda n: n not in (".", ".."))
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(inside=st.lists(_NAMES, min_size=1, max_size=4), beside=st.lists(_NAMES, min_size=1, max_size=4))
+def test_any_path_inside_an_input_folder_is_refused_and_any_beside_it_is_not(tmp_path, inside, beside):
+    """Property: through a symlink or not, a path under an input folder is refused; one in a sibling folder is not."""
+    run = tmp_path / "run"
+    if not run.exists():
+        _run_folder(run)
+        (tmp_path / "alias").symlink_to(run)
+    for base in (run, tmp_path / "alias"):
+        with pytest.raises(ParameterError, match="inside the input"):
+            outputs.refuse_inputs(base.joinpath(*inside), "out", [run])
+    outputs.refuse_inputs(tmp_path.joinpath("elsewhere", *beside), "out", [run, run / "scenario.yaml"])

@@ -250,3 +250,20 @@ def test_demo_refuses_an_earlier_demo_before_any_work(tmp_path, capsys):
     err = _error(capsys)
     assert f"{out / 'reality'} exists already" in err and "--overwrite" in err
     assert sorted(p.name for p in out.iterdir()) == ["notes.txt", "reality"]
+
+
+def test_labels_export_overwrite_replaces_only_the_earlier_export(tmp_path, capsys):
+    rec = tmp_path / "cam"
+    args = ["simulate", "ferry_crossing", "--out", str(rec), "--offset", "39", "--duration", "0.2", "--sensors", "camera", "-q"]
+    assert run(args) == 0
+    out = tmp_path / "coco"
+    assert run(["labels", "export", str(rec), "--out", str(out)]) == 0
+    images = sorted(p.name for p in (out / "images").iterdir())
+    assert images and (out / "annotations.json").is_file()
+    (out / "images" / "mine.png").write_bytes(b"a user's image")
+    (out / "images" / images[0]).unlink()  # an earlier export's image gone: nothing to remove, no error
+    assert run(["labels", "export", str(rec), "--out", str(out)]) == 2
+    assert "exists already" in _error(capsys)
+    assert run(["labels", "export", str(rec), "--out", str(out), "--overwrite"]) == 0
+    assert sorted(p.name for p in (out / "images").iterdir()) == sorted([*images, "mine.png"])
+    assert (out / "images" / "mine.png").read_bytes() == b"a user's image"
