@@ -10,6 +10,7 @@ import pytest
 from seatwin.campaign import load_campaign, run_campaign
 from seatwin.campaign.results import TARGET_COLUMNS
 from seatwin.cli.main import run
+from seatwin.outputs import OutputExistsError
 
 TINY = """\
 scenarios: [ferry_crossing]
@@ -93,11 +94,16 @@ def test_rows_and_resume(tmp_path, count_simulations):
     assert count_simulations == [(1, "raycast")]
     assert (out / "results.csv").read_text() == before
 
-    # a grown campaign runs only the new jobs
+    # another campaign (here: one more seed) in the same folder is refused, the results untouched ...
     count_simulations.clear()
-    run_campaign(_spec(tmp_path, TINY), out, engine="sequential")
-    assert sorted(count_simulations) == [(2, "depthbuffer"), (2, "raycast"), (1002, "raycast")]
-    assert _rows(out)[:4] == rows[:2] + _rows(out)[2:4] and len(_rows(out)) == 8
+    grown = _spec(tmp_path, TINY)
+    with pytest.raises(OutputExistsError, match="holds the results of another campaign"):
+        run_campaign(grown, out, engine="sequential")
+    assert count_simulations == [] and (out / "results.csv").read_text() == before
+    # ... or with overwrite starts afresh: every job runs again, none of the first campaign's files is reused
+    run_campaign(grown, out, engine="sequential", overwrite=True)
+    assert len(count_simulations) == 6 and len(_rows(out)) == 8
+    assert _rows(out)[:2] == rows[:2]  # same code, same seeds: the same rows
 
 
 @pytest.mark.slow

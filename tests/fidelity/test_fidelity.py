@@ -154,7 +154,7 @@ def test_calibrate_bias_needs_a_fit_and_sets_the_tracker_bias(toy_mat, tmp_path,
 
 
 @pytest.mark.slow
-def test_fidelity_reruns_are_identical(toy_mat, tmp_path):
+def test_fidelity_reruns_are_identical(toy_mat, tmp_path, capsys):
     args = [
         "fidelity",
         "joyride",
@@ -176,6 +176,14 @@ def test_fidelity_reruns_are_identical(toy_mat, tmp_path):
     assert run([*args, "--out", str(tmp_path / "a")]) == 0
     assert run([*args, "--out", str(tmp_path / "b")]) == 0
     assert (tmp_path / "a" / "fidelity.json").read_text() == (tmp_path / "b" / "fidelity.json").read_text()
+    # the same command into the same folder resumes; other settings there are refused, the results kept
+    before = (tmp_path / "a" / "fidelity.json").read_text()
+    assert run([*args, "--out", str(tmp_path / "a")]) == 0
+    assert (tmp_path / "a" / "fidelity.json").read_text() == before
+    capsys.readouterr()
+    assert run([*args[:-1], "5", "--out", str(tmp_path / "a")]) == 2
+    assert "holds the results of another fidelity (other settings)" in capsys.readouterr().err
+    assert (tmp_path / "a" / "fidelity.json").read_text() == before
 
 
 def test_replica_subset_draws_as_in_the_whole_recording():

@@ -181,11 +181,13 @@ def test_errors_leave_no_output(tmp_path: Path, truth, capsys) -> None:
     out.parent.mkdir()
     out.write_text("previous\n")
     assert run(cases[0][0]) == 2
-    _one_line_error(capsys)
+    assert "exists already" in _one_line_error(capsys)  # refused before any work, without --overwrite
+    assert run([*cases[0][0], "--overwrite"]) == 2
+    assert "no common time interval" in _one_line_error(capsys)
     assert out.read_text() == "previous\n" and sorted(p.name for p in out.parent.iterdir()) == ["s.csv"]
     # A malformed antenna file: error names file and line.
     bad = tmp_path / "bad.nmea"
     bad.write_text(stern.read_text().replace("GPGGA,100001.10", "GPGGA,100001.1X", 1))
-    assert run([*base, "--vessel", f"Finn={bow},{bad}", *tail]) == 2
+    assert run([*base, "--vessel", f"Finn={bow},{bad}", *tail, "--overwrite"]) == 2
     err = _one_line_error(capsys)
     assert str(bad) in err and "line " in err

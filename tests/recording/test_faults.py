@@ -131,3 +131,26 @@ def test_rosbag2_without_metadata_yaml(tmp_path: Path) -> None:
     with open_bag(tmp_path / "run" / "recording") as rec:
         assert rec.recovered
         assert len(list(rec.point_clouds("/lidar/points"))) == 3
+
+
+def test_a_manifest_is_finished_with_the_error_even_on_a_full_disk(tmp_path: Path, monkeypatch) -> None:
+    """The temporary manifest cannot be written (disk full): the manifest is rewritten in its own blocks, no .part."""
+    from seatwin.recording.manifest import write_manifest
+
+    write_manifest(tmp_path, {"completed": False, "error": None, "notes": ["x" * 200]})
+    real = Path.write_bytes
+
+    def full(self: Path, data: bytes) -> int:
+        if self.name.endswith(".part"):
+            real(self, b"")
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(self))
+        return real(self, data)
+
+    monkeypatch.setattr(Path, "write_bytes", full)
+    write_manifest(tmp_path, {"completed": False, "error": "OSError: [Errno 28] No space left on device"})
+    assert json.loads((tmp_path / "manifest.json").read_text())["error"].endswith("No space left on device")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["manifest.json"]
+    before = (tmp_path / "manifest.json").read_text()
+    with pytest.raises(OSError, match="No space left"):  # more than its blocks hold: refused, the old one intact
+        write_manifest(tmp_path, {"notes": ["y" * 20_000]})
+    assert (tmp_path / "manifest.json").read_text() == before and sorted(p.name for p in tmp_path.iterdir()) == ["manifest.json"]

@@ -180,9 +180,9 @@ def execute_in_task(fn: JobFn, job: Job, *needed: JobRecord) -> JobRecord:
 
 def write_atomic(path: Path, text: str) -> None:
     """Write ``text`` to ``path`` through a temporary file beside it, so a reader never sees half a file."""
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_text(text)
-    os.replace(tmp, path)
+    from seatwin.outputs import write_text_atomic
+
+    write_text_atomic(path, text)
 
 
 def record_path(out_dir: Path, job_id_: str) -> Path:

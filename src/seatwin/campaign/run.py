@@ -7,6 +7,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from seatwin.campaign.engine import Engine, run_jobs
+from seatwin.campaign.folder import claim_folder
 from seatwin.campaign.grid import SYNTHETIC, expand_grid
 from seatwin.campaign.job import campaign_job
 from seatwin.campaign.results import CampaignResult, write_results
@@ -21,6 +22,7 @@ def run_campaign(
     workers: int | None = None,
     engine: Engine = "ray",
     progress: Callable[[int, int], None] | None = None,
+    overwrite: bool = False,
 ) -> CampaignResult:
     """Run the campaign ``spec`` (or its YAML file) into ``out``; jobs finished there by an earlier run are not run again.
 
@@ -28,12 +30,15 @@ def run_campaign(
     ``address`` (``workers`` then caps the jobs in flight); ``workers=0`` or ``engine="sequential"``
     runs the jobs in this process, one by one. A failed job is recorded with its error (in
     results.csv and campaign.json) and the others go on. ``progress(done, total)`` counts jobs.
+    ``out`` remembers the spec (:mod:`seatwin.campaign.folder`): another campaign's results there are refused,
+    or with ``overwrite`` removed before this one starts.
     """
     source = None
     if not isinstance(spec, CampaignSpec):
         source = spec
         spec = load_campaign(spec)
     grid = expand_grid(spec, source)
+    claim_folder(out, spec, None if source is None else str(source), overwrite=overwrite)
     report = run_jobs(
         grid.jobs,
         campaign_job,

@@ -7,6 +7,7 @@ from pathlib import Path
 import typer
 
 from seatwin.cli.flags import either, old_spelling
+from seatwin.cli.output import overwrite_option
 
 _SNAPSHOT_HELP = (
     "Render the three frontal cameras (left, front, right: 72° apart, 15° down, 82° HFOV, 612 × 512) of a "
@@ -32,11 +33,12 @@ def register(app: typer.Typer) -> None:
             help="Harbour instead of the scenario's own: 'default', 'ravnkloa' (a Gemini CSV's default), 'none' "
             "or a land raster .bin/.yaml.",
         ),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         from seatwin.pipeline.labels import camera_snapshot
 
         time_s = either(time_s, time_old, 0.0, "--offset", "--time")
-        snap = camera_snapshot(scenario, time_s, out, boxes=not no_boxes, harbour=harbour)
+        snap = camera_snapshot(scenario, time_s, out, boxes=not no_boxes, harbour=harbour, overwrite=overwrite)
         for path in snap.files:
             labels = snap.labels[path.stem]
             names = ", ".join(f"{b.instance} ({b.visible_fraction:.2f} visible)" for b in labels) or "no vessel"

@@ -6,6 +6,8 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
+
 _HELP = (
     "Fidelity campaign: every combination of the CAMPAIGN.yaml's scenarios, seeds, synthetic sensor settings "
     "(e.g. lidar_mode, ray_drop, range_noise) and tracker tunings is simulated, tracked and compared with a "
@@ -13,8 +15,9 @@ _HELP = (
     "reference_seed_offset, never the same draws). Jobs run as Ray tasks: a local Ray instance by default, a "
     "cluster with --address. Writes DIR/results.csv (one row per job, tuning and target: the fidelity score, "
     "AHED, n_common…), DIR/campaign.json (engine, grid, timings) and DIR/jobs/ (one file per finished job: a "
-    "re-run skips them, so an interrupted campaign resumes; jobs that other seatwin code ran run again). Example: "
-    "docs/examples/campaign.yaml."
+    "re-run skips them, so an interrupted campaign resumes; jobs that other seatwin code ran run again). DIR "
+    "remembers the campaign (DIR/campaign-spec.json): a different CAMPAIGN.yaml (or a changed scenario file) "
+    "is refused there, or with --overwrite starts afresh. Example: docs/examples/campaign.yaml."
 )
 
 
@@ -35,13 +38,13 @@ def register(app: typer.Typer) -> None:
             "0 runs the jobs in this process, one by one.",
         ),
         progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar (lines on a pipe)."),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         from seatwin.campaign import run_campaign
-        from seatwin.cli.output import check_output_dir, progress_counter
+        from seatwin.cli.output import progress_counter
 
-        check_output_dir(out, "out")
         with progress_counter("campaign", progress, min_total=1) as advance:
-            result = run_campaign(spec, out, address=address, workers=workers, progress=advance)
+            result = run_campaign(spec, out, address=address, workers=workers, progress=advance, overwrite=overwrite)
         run = result.report.describe()
         where = f"on Ray at {run['address']}" if run["address"] else ("on local Ray" if run["engine"] == "ray" else "in process")
         typer.echo(

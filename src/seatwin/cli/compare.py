@@ -6,6 +6,8 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
+
 _HELP = (
     "Compare a real and a synthetic dataset by the Hellinger distance of the tracker's estimates "
     "(thesis 5.2.1).\n\n"
@@ -131,11 +133,12 @@ def register(app: typer.Typer) -> None:
                 "targets of --truth are ignored."
             ),
         ),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         import json
 
-        from seatwin.cli.output import check_output_dir, check_output_file
         from seatwin.evaluation import CompareOptions
+        from seatwin.outputs import check_output_file, check_output_folder, write_text_atomic
         from seatwin.pipeline.compare import compare_runs
 
         when, relative = _clouds_time(clouds_at)
@@ -143,10 +146,14 @@ def register(app: typer.Typer) -> None:
             from seatwin.errors import ParameterError
 
             raise ParameterError("clouds_at", "the point clouds go into the report: give --report DIR as well")
+        inputs = [*real, *synthetic, truth, map_spec, model, dont_care, *tuning.split(",")]
         if json_out is not None:
-            check_output_file(json_out, "json_out")
+            check_output_file(json_out, "json_out", inputs=inputs, overwrite=overwrite, outputs=[report, keep_tracks])
         if report is not None:
-            check_output_dir(report, "report")
+            check_output_folder(report, "report", ["index.html"], inputs=inputs, overwrite=overwrite)
+        if keep_tracks is not None:
+            earlier = [p.name for pat in ("real_*.csv", "synthetic_*.csv") for p in sorted(keep_tracks.glob(pat))]
+            check_output_folder(keep_tracks, "keep_tracks", earlier, inputs=inputs, overwrite=overwrite)
         options = CompareOptions(
             gate=gate,
             confirmed_only=not all_tracks,
@@ -217,7 +224,7 @@ def register(app: typer.Typer) -> None:
         for path in result.track_files:
             typer.echo(f"wrote {path}")
         if json_out is not None:
-            json_out.write_text(json.dumps(result.to_json(), indent=2) + "\n")
+            write_text_atomic(json_out, json.dumps(result.to_json(), indent=2) + "\n")
             typer.echo(f"wrote {json_out}")
         if result.report is not None:
             typer.echo(f"wrote {result.report}")

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
 from seatwin.cli.simulate import BagFormat, LidarMode
 
 
@@ -23,13 +24,17 @@ def register(app: typer.Typer) -> None:
         out: Path = typer.Option(..., "--out", help="Folder for the FMUs, OspSystemStructure.xml and seatwin-cosim.json."),
         step: float = typer.Option(0.1, "--step", help="Fixed co-simulation step [s]."),
         date: str | None = typer.Option(None, "--date", help="UTC date YYYY-MM-DD of a TimeOfDay CSV."),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         """Write ScenarioPlayer.fmu (the scenario, embedded), GeminiBridge.fmu and a ready OspSystemStructure.xml."""
         from seatwin.cli.scenario import _date
-        from seatwin.cosim.osp import export_system
+        from seatwin.cosim.osp import EXPORT_FILES, export_system
+        from seatwin.outputs import check_output_folder
         from seatwin.scenario.load import load_scenario
 
-        paths = export_system(load_scenario(scenario, date=_date(date)), out, step_size=step)
+        sc = load_scenario(scenario, date=_date(date))
+        check_output_folder(out, "out", EXPORT_FILES, inputs=[scenario, *sc.files], overwrite=overwrite)
+        paths = export_system(sc, out, step_size=step)
         typer.echo(f"wrote {', '.join(p.name for p in paths.values())} into {out}")
 
     @cosim_app.command("run")
@@ -47,6 +52,7 @@ def register(app: typer.Typer) -> None:
         fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Bag format."),
         step: float = typer.Option(0.1, "--step", help="Fixed step [s] when given a scenario."),
         date: str | None = typer.Option(None, "--date", help="UTC date YYYY-MM-DD of a TimeOfDay CSV scenario."),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         """Run the OSP system with libcosim (fixed step) against seatwin's Simulation server; record a ROS bag.
 
@@ -55,10 +61,13 @@ def register(app: typer.Typer) -> None:
         from seatwin.cli.output import split_list
         from seatwin.cli.scenario import _date
         from seatwin.cosim.osp import export_system, run_system
+        from seatwin.outputs import remove_outputs
+        from seatwin.recording.manifest import check_new_run
         from seatwin.scenario.load import load_scenario
 
         names = split_list(sensors, "sensors") or ()
         path = Path(system)
+        remove_outputs(check_new_run(out, "out", inputs=[system], overwrite=overwrite, extra=("cosim",)))
         if path.suffix.lower() != ".xml":
             path = export_system(load_scenario(system, date=_date(date)), out / "cosim", step_size=step)["system"]
         result = run_system(

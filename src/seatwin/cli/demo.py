@@ -6,16 +6,19 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
+
 
 def register(app: typer.Typer) -> None:
     @app.command("demo")
     def demo_cmd(
         out: Path = typer.Option(
-            Path("runs/demo"), "--out", help="Folder for everything the demo writes (must not hold an earlier demo)."
+            Path("runs/demo"), "--out", help="Folder for everything the demo writes (an earlier demo there: --overwrite)."
         ),
         scenario: str = typer.Option("ferry_crossing", "--scenario", help="Built-in scenario to simulate."),
         duration: float = typer.Option(30.0, "--duration", help="Simulated seconds."),
         seed: int = typer.Option(1, "--seed", help="Seed of every random draw."),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         """Run the whole seatwin loop on built-in data and print where the results are.
 
@@ -26,7 +29,12 @@ def register(app: typer.Typer) -> None:
         from seatwin.pipeline.demo import run_demo
 
         result = run_demo(
-            out, scenario=scenario, duration=duration, seed=seed, step=lambda title: typer.secho(f"▶ {title}", bold=True)
+            out,
+            scenario=scenario,
+            duration=duration,
+            seed=seed,
+            step=lambda title: typer.secho(f"▶ {title}", bold=True),
+            overwrite=overwrite,
         )
         for ln in result.comparison.table["targets"]:
             ahed = "undefined" if ln["ahed"] is None else f"{ln['ahed']:.3f}"

@@ -6,6 +6,8 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
+
 _HELP = (
     "Recompute the thesis's Table 4.1 (depth-buffer parameters, maximum numerical error ε_max by "
     "4.32 and video memory B by 4.35) for the RGB camera and the lidar.\n\n"
@@ -72,14 +74,17 @@ def register(app: typer.Typer) -> None:
         verify: bool = typer.Option(
             False, "--verify", help="Check the claim 4.11/4.24 against exact ray casting on the default harbour; print JSON."
         ),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         import json
 
         from seatwin.errors import InputError
+        from seatwin.outputs import check_output_folder
+        from seatwin.sensors.depthbuffer.plots import ERROR_PLOTS
         from seatwin.sensors.depthbuffer.table import table_json
 
-        if plots is not None and plots.exists() and not plots.is_dir():
-            raise InputError(plots, "exists and is not a folder (--plots expects a folder for the PNG files)", where="--plots")
+        if plots is not None:
+            check_output_folder(plots, "plots_dir", ["verification.png"] if verify else ERROR_PLOTS, overwrite=overwrite)
         if verify:
             _verify(plots)
             return

@@ -6,6 +6,8 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
+
 _HELP = (
     "Evaluate a track file against ground truth (thesis 5.1.4).\n\n"
     "Each track subscribes to the closest ground truth within --gate metres; per target the "
@@ -56,14 +58,15 @@ def register(app: typer.Typer) -> None:
             metavar="harbour|ravnkloa|none|RASTER",
             help="Water mask to count false tracks on land (default: the recording's harbour, when --truth is a recording).",
         ),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         import json
 
-        from seatwin.cli.output import check_output_file
+        from seatwin.outputs import check_output_file, write_text_atomic
         from seatwin.pipeline.evaluate import evaluate_run
 
         if json_out is not None:
-            check_output_file(json_out, "json_out")
+            check_output_file(json_out, "json_out", inputs=[tracks, truth, map_spec], overwrite=overwrite)
         result = evaluate_run(tracks, truth, gate=gate, confirmed_only=not all_tracks, confidence=confidence, map_spec=map_spec)
         typer.echo(
             f"{'target':<12} {'coverage':>8} {'first (UTC)':>14} {'last (UTC)':>14} {'switch':>6} {'RMSE':>8} {'RMSEpos':>8} "
@@ -89,5 +92,5 @@ def register(app: typer.Typer) -> None:
                 "confidence": confidence,
                 **result.to_dict(),
             }
-            json_out.write_text(json.dumps(data, indent=2) + "\n")
+            write_text_atomic(json_out, json.dumps(data, indent=2) + "\n")
             typer.echo(f"wrote {json_out}")

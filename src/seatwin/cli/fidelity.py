@@ -6,6 +6,8 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
+
 _JOYRIDE_HELP = (
     "Measure the radar model's fidelity on the joyride dataset (real radar with GNSS ground truth).\n\n"
     "Builds the synthetic replica (ownship and target from the ground truth, the radar model, the same scan "
@@ -73,7 +75,9 @@ def register(app: typer.Typer) -> None:
         progress: bool = typer.Option(
             True, "--progress/--no-progress", help="Progress bar (a line every 10 s when not a terminal)."
         ),
+        overwrite: bool = overwrite_option(),
     ) -> None:
+        from seatwin.campaign.folder import claim_experiment_folder
         from seatwin.cli.output import progress_counter, split_list
         from seatwin.fidelity import FidelityOptions, run_fidelity, write_fidelity
         from seatwin.settings import validated
@@ -93,6 +97,16 @@ def register(app: typer.Typer) -> None:
                 "calibrate_bias": calibrate_bias,
                 "ablations": ablations,
             },
+        )
+        claim_experiment_folder(
+            out,
+            "out",
+            kind="fidelity",
+            settings={**opts.model_dump(mode="json"), "html": html},
+            files=[str(mat), None if radar is None else str(radar), tuning],
+            source=str(mat),
+            outputs=("fidelity.json", "fidelity.md", "index.html", "jobs"),
+            overwrite=overwrite,
         )
         with progress_counter("fidelity (seeds × models)", progress, min_total=1) as advance:
             result = run_fidelity(str(mat), opts, jobs_in=out, workers=workers, address=address, progress=advance)

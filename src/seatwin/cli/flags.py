@@ -32,6 +32,8 @@ FLAG_OF: dict[str, str] = {
     "plots_dir": "--plots",
     "form": "--hellinger-form",
     "json_out": "--json",
+    "out_dir": "--out",
+    "quality_json": "--quality",
     "report_dir": "--report",
     "tunings": "--tuning",
     "real": "--real/--synthetic",

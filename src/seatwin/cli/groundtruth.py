@@ -6,6 +6,8 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
+
 _HELP = (
     "Build 3-DOF vessel ground truth from GNSS antenna logs (thesis §3.3.2).\n\n"
     "Every antenna is interpolated onto one common clock (multiples of 1/RATE over the interval all "
@@ -92,11 +94,14 @@ def register(app: typer.Typer) -> None:
             metavar="DEG/S",
             help="A one-sample heading spike (> 90° and back) turning faster than this is an error naming the fixes.",
         ),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         from seatwin.cli.parsing import parse_origin, parse_vessel
         from seatwin.groundtruth import compute_ground_truth, write_outputs
+        from seatwin.groundtruth.pipeline import check_outputs
 
         specs = [parse_vessel(v) for v in vessel]
+        check_outputs(specs, out, quality, plots, overwrite=overwrite)
         result = compute_ground_truth(
             specs,
             parse_origin(origin),

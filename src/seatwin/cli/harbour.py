@@ -7,6 +7,8 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
+
 
 def register(app: typer.Typer) -> None:
     group = typer.Typer(help="Harbours: fit a land raster's alignment to scenarios' vessels.", no_args_is_help=True)
@@ -20,18 +22,19 @@ def register(app: typer.Typer) -> None:
             None, "--out", metavar="FILE", help="Write the alignment and its provenance as YAML (e.g. NAME.alignment.yaml)."
         ),
         as_json: bool = typer.Option(False, "--json", help="Print the fit as JSON."),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         """Fit the harbour raster's rotation and shift so that every vessel of SCENARIO… is on water.
 
         The alignment of a raster NAME.yaml is read from NAME.alignment.yaml beside it; the 'ravnkloa'
         harbour's is shipped with seatwin (seatwin/layout/ravnkloa_alignment.yaml).
         """
-        from seatwin.cli.output import check_output_file
         from seatwin.layout.alignment import write_alignment
+        from seatwin.outputs import check_output_file
         from seatwin.scenario.on_water import fit_harbour_alignment
 
         if out is not None:
-            check_output_file(out, "out")
+            check_output_file(out, "out", inputs=scenarios, overwrite=overwrite)
         fit = fit_harbour_alignment(scenarios, harbour)
         al = fit.alignment
         if out is not None:

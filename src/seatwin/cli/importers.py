@@ -6,6 +6,8 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
+
 _JOYRIDE_HELP = (
     "Import the joyride radar dataset (joyride.mat, VIMMJIPDA experiments near Trondheim) as a recording.\n\n"
     "Per scan: the radar plots (rows with inf dropped) as a world-frame radar detection cloud, and ground "
@@ -28,10 +30,11 @@ def register(app: typer.Typer) -> None:
         mat: Path = typer.Argument(..., metavar="JOYRIDE.mat", help="The joyride .mat file (MATLAB v5)."),
         out: Path = typer.Option(..., "--out", metavar="RUN_DIR", help="New run directory for the recording."),
         fmt: str = typer.Option("mcap", "--format", metavar="FMT", help="Bag format: mcap, sqlite3 or ros1."),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         from seatwin.perception.datasets import import_joyride
 
-        summary = import_joyride(mat, out, fmt)
+        summary = import_joyride(mat, out, fmt, overwrite=overwrite)
         typer.echo(f"wrote {out}: {summary}")
 
     @group.command("ravnkloa-radar", help=_RAVNKLOA_HELP)
@@ -42,8 +45,9 @@ def register(app: typer.Typer) -> None:
         map_spec: str = typer.Option(
             None, "--map", metavar="RASTER", help="Land/water raster to suggest to 'seatwin track' (stored in the manifest)."
         ),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         from seatwin.perception.datasets import import_ravnkloa_radar
 
-        summary = import_ravnkloa_radar(csv, out, fmt, map_path=map_spec)
+        summary = import_ravnkloa_radar(csv, out, fmt, map_path=map_spec, overwrite=overwrite)
         typer.echo(f"wrote {out}: {summary}")

@@ -6,6 +6,8 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
+
 _EXPORT_HELP = (
     "Export every camera image of a recording (simulated with --sensors ...,camera) as PNG under DIR/images and "
     "the ground-truth boxes of the labels topics as COCO DIR/annotations.json (category 'vessel'; attributes: "
@@ -24,8 +26,9 @@ def register(app: typer.Typer) -> None:
         min_visible: float = typer.Option(
             0.0, "--min-visible", min=0.0, max=1.0, help="Leave out boxes whose visible fraction is at most this."
         ),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         from seatwin.pipeline.labels import export_coco
 
-        res = export_coco(run, out, min_visible_fraction=min_visible)
+        res = export_coco(run, out, min_visible_fraction=min_visible, overwrite=overwrite)
         typer.echo(f"{res.images} images, {res.annotations} boxes: {res.annotations_file}")

@@ -7,6 +7,7 @@ from pathlib import Path
 import typer
 
 from seatwin.cli.flags import either, old_spelling
+from seatwin.cli.output import overwrite_option
 
 
 def register(app: typer.Typer) -> None:
@@ -34,9 +35,11 @@ def register(app: typer.Typer) -> None:
             "--harbour",
             help="Override the scenario's harbour: 'default', 'ravnkloa', 'none' or a land raster .bin/.yaml.",
         ),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         """One lidar sweep seen from above over the harbour, coloured by intensity, with the vessels' outlines."""
         from seatwin.errors import InputError, ParameterError
+        from seatwin.outputs import check_output_file
         from seatwin.scenario.load import load_scenario
         from seatwin.sensors.lidar import lidar_for_scenario, sweep_to_world
         from seatwin.sensors.lidar_config import lidar_preset
@@ -51,6 +54,7 @@ def register(app: typer.Typer) -> None:
         if output is None:
             raise ParameterError("out", "give the PNG file to write (--out FILE.png)")
         sc = load_scenario(scenario)
+        check_output_file(output, "out", inputs=[scenario, harbour, *sc.files], overwrite=overwrite)
         cfg = lidar_preset(preset)
         if drop is not None:
             cfg = cfg.with_(drop_probability=drop)

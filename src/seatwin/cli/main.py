@@ -1,7 +1,9 @@
 """The ``seatwin`` command: a typer app that each ``seatwin.cli.<verb>`` module registers into.
 
 Bad input anywhere raises :class:`seatwin.errors.InputError`; :func:`main` prints its one-line
-message and exits with status 2 instead of a traceback.
+message and exits with status 2 instead of a traceback. As a last resort, an ``OSError``,
+``RecursionError``, ``MemoryError`` or ``OverflowError`` that no reader caught is printed the same way
+(naming the file when the error has one); anything else is a bug and keeps its traceback.
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ import typer
 from seatwin import __version__
 from seatwin.cli.flags import flag_for
 from seatwin.errors import InputError, ParameterError
+from seatwin.outputs import OutputExistsError
 
 app = typer.Typer(
     name="seatwin",
@@ -86,7 +89,8 @@ def _run(argv: Sequence[str] | None) -> int:
         # Without standalone mode, a command's typer.Exit(n) comes back as the return value, not an exception.
         code = app(args=list(argv) if argv is not None else None, prog_name="seatwin", standalone_mode=False)
     except ParameterError as exc:
-        typer.echo(f"seatwin: error: {exc.render(flag_for(exc.param))}", err=True)
+        hint = f" (give {flag_for('overwrite')} to replace it)" if isinstance(exc, OutputExistsError) else ""
+        typer.echo(f"seatwin: error: {exc.render(flag_for(exc.param))}{hint}", err=True)
         return 2
     except InputError as exc:
         typer.echo(f"seatwin: error: {exc}", err=True)
@@ -102,7 +106,24 @@ def _run(argv: Sequence[str] | None) -> int:
     except typer.TyperException as exc:  # usage errors: unknown verb or option, bad value, missing option
         typer.echo(f"seatwin: error: {exc.format_message()}", err=True)
         return 2 if exc.exit_code in (1, 2) else exc.exit_code
+    except (OSError, RecursionError, MemoryError, OverflowError) as exc:  # the last resort: one line, no traceback
+        typer.echo(f"seatwin: error: {last_resort_message(exc)}", err=True)
+        return 2
     return code if isinstance(code, int) else 0
+
+
+def last_resort_message(exc: BaseException) -> str:
+    """One line for an error no reader turned into an :class:`InputError`: the file (``OSError.filename``) and
+    what went wrong."""
+    if isinstance(exc, OSError):
+        names = [str(n) for n in (exc.filename, exc.filename2) if n is not None]
+        reason = exc.strerror or str(exc) or type(exc).__name__
+        return f"{' → '.join(names)}: {reason}" if names else reason
+    if isinstance(exc, RecursionError):
+        return f"input nested too deeply to handle ({exc})"
+    if isinstance(exc, MemoryError):
+        return f"out of memory{f' ({exc})' if str(exc) else ''}"
+    return f"a number too large to handle ({exc})"
 
 
 def main() -> None:

@@ -1,4 +1,5 @@
-"""Command-line helpers shared by the verbs: list options, output paths checked before any work, progress."""
+"""Command-line helpers shared by the verbs: list options, the ``--overwrite`` option, progress (the output-path
+rules themselves are the library's, :mod:`seatwin.outputs`)."""
 
 from __future__ import annotations
 
@@ -6,7 +7,7 @@ import contextlib
 import sys
 import time
 from collections.abc import Callable, Iterator
-from pathlib import Path
+from typing import Any
 
 from seatwin.errors import ParameterError
 
@@ -21,24 +22,13 @@ def split_list(text: str | None, param: str) -> tuple[str, ...] | None:
     return parts
 
 
-def check_output_file(path: Path, param: str) -> None:
-    """Refuse, before any work, an output file that is a folder or whose folder cannot be made."""
-    if path.is_dir():
-        raise ParameterError(param, f"{path} is a folder; expected a file name")
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise ParameterError(param, f"cannot create {path.parent}: {exc.strerror or exc}") from None
+def overwrite_option() -> Any:
+    """``--overwrite``, the one flag of every verb that writes: replace outputs that exist already."""
+    import typer
 
-
-def check_output_dir(path: Path, param: str) -> None:
-    """Refuse, before any work, an output folder that is a file or cannot be made."""
-    if path.exists() and not path.is_dir():
-        raise ParameterError(param, f"{path} exists and is not a folder")
-    try:
-        path.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise ParameterError(param, f"cannot create {path}: {exc.strerror or exc}") from None
+    return typer.Option(
+        False, "--overwrite", help="Replace outputs that exist already (never an input, never a file seatwin did not write)."
+    )
 
 
 @contextlib.contextmanager

@@ -6,6 +6,8 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
+
 _FIT_HELP = (
     "Fit the radar model's parameters to a real recording's statistics, each with its uncertainty.\n\n"
     "RECORDING is joyride.mat (ground truth inside) or a seatwin recording with a radar topic "
@@ -43,9 +45,13 @@ def register(app: typer.Typer) -> None:
         clutter: str = typer.Option("uniform", "--clutter", help="Clutter form: uniform or map (world-fixed density map)."),
         first_half: bool = typer.Option(False, "--first-half", help="Fit on the first half of the scans only."),
         seed: int = typer.Option(0, "--seed", help="Seed of the bootstrap."),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         from seatwin.fidelity.radar_fit import fit_radar_to_recording
+        from seatwin.outputs import check_output_file
         from seatwin.sensors.radar.config import save_radar_config
+
+        check_output_file(out, "out", inputs=[recording, truth, base], overwrite=overwrite)
 
         res, obs = fit_radar_to_recording(
             recording, truth=truth, base=base, first_half=first_half, gate=gate, boot=boot, clutter=clutter, seed=seed
@@ -96,6 +102,7 @@ def register(app: typer.Typer) -> None:
         duration: float = typer.Option(
             None, "--duration", min=0.0, help="Simulate only the first SECONDS (rotations in [start, start + SECONDS))."
         ),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         from seatwin.pipeline.radar import simulate_radar
 
@@ -108,5 +115,6 @@ def register(app: typer.Typer) -> None:
             seed=seed,
             duration=duration,
             fmt=fmt,
+            overwrite=overwrite,
         )
         typer.echo(f"simulated {result.n_scans} radar scans, {result.n_plots} plots" + "".join(f" → {p}" for p in result.outputs))

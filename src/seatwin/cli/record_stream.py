@@ -6,6 +6,7 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
 from seatwin.cli.simulate import BagFormat
 
 
@@ -17,6 +18,7 @@ def register(app: typer.Typer) -> None:
         host: str = typer.Option("127.0.0.1", "--host", help="Address to listen on (default loopback only)."),
         ownship: str = typer.Option("milliAmpere", "--ownship", help="Vessel whose navigation messages also give a NavSatFix."),
         fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Bag format."),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         """Serve sensorstreaming.SensorStreaming and navigation.Navigation; record every message into a ROS bag.
 
@@ -27,7 +29,10 @@ def register(app: typer.Typer) -> None:
         """
         from seatwin.api.streaming import record_stream
         from seatwin.cli.output import wait_for_sigint_or_sigterm
+        from seatwin.outputs import remove_outputs
+        from seatwin.recording.manifest import check_new_run
 
+        remove_outputs(check_new_run(out, "out", overwrite=overwrite))
         handle = record_stream(out, port=port, host=host, fmt=fmt.value, ownship=ownship)
         typer.echo(f"serving SensorStreaming + Navigation on {handle.address}; recording into {out} (Ctrl-C to finish)")
         try:

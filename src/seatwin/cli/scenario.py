@@ -10,6 +10,8 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
+
 SPEC_HELP = "A built-in scenario name (see `seatwin scenario list`), a scenario .yaml or a Gemini .csv."
 DATE_HELP = "UTC date (YYYY-MM-DD) of a CSV whose times are TimeOfDay."
 
@@ -78,12 +80,16 @@ def register(app: typer.Typer) -> None:
         out: Path = typer.Option(..., "-o", "--out", help="PNG file to write.", dir_okay=False),
         date: str | None = typer.Option(None, "--date", help=DATE_HELP),
         tick: float = typer.Option(10.0, "--tick", min=0.1, help="Mark each track every TICK seconds."),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         """Plot the tracks (circle: start, star: end) over the harbour, like thesis Fig. 3.11."""
+        from seatwin.outputs import check_output_file
         from seatwin.scenario.load import load_scenario
         from seatwin.scenario.plot import plot_scenario
 
-        path = plot_scenario(load_scenario(spec, date=_date(date)), out, tick_s=tick)
+        scenario = load_scenario(spec, date=_date(date))
+        check_output_file(out, "out", inputs=[spec, *scenario.files], overwrite=overwrite)
+        path = plot_scenario(scenario, out, tick_s=tick)
         typer.echo(f"wrote {path}")
 
     @group.command("export")
@@ -92,13 +98,17 @@ def register(app: typer.Typer) -> None:
         out_dir: Path = typer.Option(..., "--out", help="Directory to write NAME.yaml and NAME.csv into.", file_okay=False),
         time_format: TimeFormat = typer.Option(TimeFormat.posix, "--time-format", help="Time column of the CSV."),
         date: str | None = typer.Option(None, "--date", help=DATE_HELP),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         """Write a scenario as a YAML file and its Gemini CSV."""
+        from seatwin.outputs import check_output_folder
         from seatwin.scenario.load import load_scenario, save_scenario
 
         scenario = load_scenario(spec, date=_date(date))
         fmt = "posix" if time_format == TimeFormat.posix else "time_of_day"
         stem = re.sub(r"[^\w.-]+", "_", scenario.name).strip("._") or "scenario"
+        names = [f"{stem}.yaml", f"{stem}.csv"]
+        check_output_folder(out_dir, "out", names, inputs=[spec, *scenario.files], overwrite=overwrite)
         yaml_path, csv_path = save_scenario(scenario, out_dir / f"{stem}.yaml", time_format=fmt)
         typer.echo(f"wrote {yaml_path}\nwrote {csv_path}")
 

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
 from seatwin.cli.simulate import BagFormat, LidarMode
 
 
@@ -41,6 +42,7 @@ def register(app: typer.Typer) -> None:
             metavar="HOST:PORT",
             help="Also stream lidar clouds, camera images and radar spokes to this SensorStreaming server.",
         ),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         """Serve Gemini's GeminiOSPInterface.Simulation (DoStep, SetStartTime) and record what the steps make.
 
@@ -52,7 +54,10 @@ def register(app: typer.Typer) -> None:
         """
         from seatwin.api.server import serve
         from seatwin.cli.output import split_list, wait_for_sigint_or_sigterm
+        from seatwin.outputs import remove_outputs
+        from seatwin.recording.manifest import check_new_run
 
+        remove_outputs(check_new_run(out, "out", inputs=[harbour], overwrite=overwrite))
         sensor_list = split_list(sensors, "sensors") or ()
         streamer = None
         if stream:

@@ -7,6 +7,8 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
+
 
 class LidarMode(str, Enum):
     raycast = "raycast"
@@ -27,7 +29,9 @@ def register(app: typer.Typer) -> None:
         scenario: str = typer.Argument(
             ..., metavar="SCENARIO", help="A built-in scenario name, a scenario .yaml, or a Gemini .csv (vessel 3 = ownship)."
         ),
-        out: Path = typer.Option(..., "--out", help="New run directory to record into."),
+        out: Path = typer.Option(
+            ..., "--out", help="New (or empty) run directory to record into; --overwrite replaces an earlier run there."
+        ),
         duration: float | None = typer.Option(None, "--duration", help="Simulated seconds (default: to the scenario's end)."),
         start: float | None = typer.Option(None, "--start", help="POSIX start time (default: the scenario's start)."),
         offset: float | None = typer.Option(
@@ -64,6 +68,7 @@ def register(app: typer.Typer) -> None:
         stream: str | None = typer.Option(
             None, "--stream", metavar="HOST:PORT", help="Also stream lidar clouds and radar spokes to a SensorStreaming server."
         ),
+        overwrite: bool = overwrite_option(),
     ) -> None:
         """Simulate the ownship's sensors along a scenario and record a ROS bag (MCAP by default).
 
@@ -84,6 +89,7 @@ def register(app: typer.Typer) -> None:
             scenario,
             out,
             on_frame=streamer.on_frame if streamer is not None else None,
+            overwrite=overwrite,
             start=start,
             start_offset=offset,
             duration=duration,

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import typer
 
-from seatwin.cli.output import split_list
+from seatwin.cli.output import overwrite_option, split_list
 from seatwin.errors import ParameterError
 
 _HELP = (
@@ -20,7 +20,8 @@ _HELP = (
     "comparison is (no shared draws). The reference model's own distance is the floor. Kinds: noise "
     "(range σ, m), drop (ray-drop probability), dissipation (off/on), mount (yaw bias, deg; /tf_static keeps "
     "the nominal mount). Every run is a job of the campaign engine (in this process, or on Ray with --workers "
-    "/ --address); each job's outcome is kept in --out/jobs, so re-running the command resumes. Writes "
+    "/ --address); each job's outcome is kept in --out/jobs, so re-running the command resumes (other "
+    "settings in the same --out: refused, or with --overwrite started afresh). Writes "
     "sweep.csv, sweep.json (Spearman ρ per kind, direction and seed) and sweep.png into --out."
 )
 
@@ -114,8 +115,9 @@ def register(app: typer.Typer) -> None:
             None, "--address", metavar="RAY_ADDRESS", help="Run on this Ray cluster (e.g. ray://head:10001 or auto)."
         ),
         progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar."),
+        overwrite: bool = overwrite_option(),
     ) -> None:
-        from seatwin.cli.output import check_output_dir, progress_counter
+        from seatwin.cli.output import progress_counter
         from seatwin.settings import validated
         from seatwin.sweep import SweepSettings, plot_sweep, run_sweep, spearman_by_kind, summarise, write_results
 
@@ -133,9 +135,8 @@ def register(app: typer.Typer) -> None:
                 "tuning": tuning,
             },
         )
-        check_output_dir(out, "out")
         with progress_counter("sweep", progress, min_total=1) as advance:
-            result = run_sweep(out, settings, workers=workers, address=address, progress=advance)
+            result = run_sweep(out, settings, workers=workers, address=address, progress=advance, overwrite=overwrite)
         csv_path, json_path = write_results(out, result)
         png = plot_sweep(result, out / "sweep.png")
         for kind, by_dir in spearman_by_kind(result, "score").items():

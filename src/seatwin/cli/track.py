@@ -6,6 +6,8 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
+
 _HELP = (
     "Track targets in a recording with the JIPDA tracker and extended Kalman filters (thesis ch. 5.1).\n\n"
     "Lidar sweeps are masked (ownship, land) and clustered; radar plots are masked and optionally merged; "
@@ -84,12 +86,14 @@ def register(app: typer.Typer) -> None:
             None, "--classes", metavar="ID[,ID…]", help="Class ids the onnx detector keeps (default: 8, COCO 'boat')."
         ),
         progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar on long recordings."),
+        overwrite: bool = overwrite_option(),
     ) -> None:
-        from seatwin.cli.output import check_output_file, progress_counter, split_list
+        from seatwin.cli.output import progress_counter, split_list
+        from seatwin.outputs import check_output_file
         from seatwin.pipeline.track import TrackOptions, track_recording
         from seatwin.settings import validated
 
-        check_output_file(out, "out")
+        check_output_file(out, "out", inputs=[recording, model, tuning, map_spec], overwrite=overwrite)
         options = validated(
             TrackOptions,
             dict(

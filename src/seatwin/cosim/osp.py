@@ -27,6 +27,8 @@ from seatwin.scenario import Scenario
 FMU_SOURCES = Path(__file__).parent / "fmus"
 SYSTEM_FILE = "OspSystemStructure.xml"
 META_FILE = "seatwin-cosim.json"
+EXPORT_FILES = ("ScenarioPlayer.fmu", "GeminiBridge.fmu", SYSTEM_FILE, META_FILE)
+"""What :func:`export_system` writes into its folder."""
 PLAYER, BRIDGE = "player", "bridge"
 NS_PER_S = 1_000_000_000
 

@@ -156,8 +156,9 @@ def _fmt(x: float) -> str:
 
 def write_tracks(path: str | os.PathLike[str], tracks: Tracks) -> None:
     """Write ``tracks`` as a track file, with a scan marker row for every scan time without a track."""
+    from seatwin.outputs import atomic_output
+
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     rows: list[tuple[float, int, list[str]]] = []
     for i in range(len(tracks)):
         cells = [_fmt(tracks.time[i]), str(int(tracks.track_id[i])), _fmt(tracks.existence[i])]
@@ -169,7 +170,7 @@ def write_tracks(path: str | os.PathLike[str], tracks: Tracks) -> None:
         if t not in with_rows:
             rows.append((t, NO_TRACK, [_fmt(t), str(NO_TRACK)] + [""] * (len(COLUMNS) - 2)))
     rows.sort(key=lambda r: (r[0], r[1]))
-    with path.open("w", newline="") as handle:
+    with atomic_output(path) as tmp, tmp.open("w", newline="") as handle:
         writer = csv.writer(handle, lineterminator="\n")
         writer.writerow(COLUMNS)
         writer.writerows(r[2] for r in rows)

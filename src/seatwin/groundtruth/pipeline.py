@@ -158,13 +158,36 @@ def check_vessel_motion(truth: VesselGroundTruth, max_speed: float = MAX_SPEED, 
         )
 
 
+def check_outputs(
+    vessels: Sequence[VesselSpec],
+    out_csv: str | os.PathLike[str],
+    quality_json: str | os.PathLike[str] | None = None,
+    plots_dir: str | os.PathLike[str] | None = None,
+    *,
+    overwrite: bool = False,
+) -> None:
+    """Refuse, before any work, outputs that would replace an antenna log or each other, or an existing file
+    (unless ``overwrite``), or that cannot be written."""
+    from seatwin.groundtruth.plots import plot_names
+    from seatwin.outputs import check_output_file, check_output_folder
+
+    logs = [f for spec in vessels for f in spec.files]
+    check_output_file(out_csv, "out", inputs=logs, overwrite=overwrite)
+    if quality_json is not None:
+        check_output_file(quality_json, "quality_json", inputs=logs, overwrite=overwrite, outputs=[out_csv])
+    if plots_dir is not None:
+        names = plot_names([spec.name for spec in vessels])
+        check_output_folder(plots_dir, "plots_dir", names, inputs=[*logs, out_csv, quality_json], overwrite=overwrite)
+
+
 def write_outputs(
     result: GroundTruthResult,
     out_csv: str | os.PathLike[str],
     quality_json: str | os.PathLike[str] | None = None,
     plots_dir: str | os.PathLike[str] | None = None,
 ) -> list[Path]:
-    """Write the Gemini CSV, and optionally the quality report and figures; all or nothing.
+    """Write the Gemini CSV, and optionally the quality report and figures; all or nothing (check them first
+    with :func:`check_outputs`).
 
     Returns the paths written.
     """

@@ -30,6 +30,14 @@ def _slug(name: str) -> str:
     return re.sub(r"[^A-Za-z0-9_.-]+", "_", name) or "vessel"
 
 
+PLOT_KINDS = ("relative_positions", "eps_gnss", "fix_quality")
+
+
+def plot_names(vessel_names: list[str]) -> list[str]:
+    """The file names :func:`write_plots` may write for these vessels (numbered V1, V2, … in order)."""
+    return [f"V{n}_{_slug(name)}_{kind}.png" for n, name in enumerate(vessel_names, start=1) for kind in PLOT_KINDS]
+
+
 def write_plots(result: Any, folder: str | Path) -> list[Path]:
     """Write the figures of ``result`` (a ``GroundTruthResult``) into ``folder``; return their paths."""
     from seatwin.groundtruth.log import quality_name

@@ -253,9 +253,17 @@ def _course(x: Array) -> float:
     return float(math.atan2(x[3], x[1])) if math.hypot(x[1], x[3]) > 0.1 else 0.0
 
 
-def import_joyride(mat: str | os.PathLike[str], out: str | os.PathLike[str], fmt: str = "mcap") -> str:
-    """Write the joyride dataset as a recording in ``out``; returns a one-line summary."""
+def import_joyride(
+    mat: str | os.PathLike[str], out: str | os.PathLike[str], fmt: str = "mcap", *, overwrite: bool = False
+) -> str:
+    """Write the joyride dataset as a recording in ``out`` (new or empty; ``overwrite`` replaces an earlier run
+    there, :func:`~seatwin.recording.manifest.check_new_run`); returns a one-line summary."""
+    from seatwin.outputs import remove_outputs
+    from seatwin.recording.manifest import check_new_run
+
+    stale = check_new_run(out, "out", inputs=[mat], overwrite=overwrite)
     ds = read_joyride(mat)
+    remove_outputs(stale)
     meta = {
         "dataset": "joyride",
         "source": str(mat),
@@ -271,8 +279,15 @@ def import_ravnkloa_radar(
     out: str | os.PathLike[str],
     fmt: str = "mcap",
     map_path: str | os.PathLike[str] | None = None,
+    *,
+    overwrite: bool = False,
 ) -> str:
-    """Write one Ravnkloa shore-radar CSV as a recording in ``out``; returns a one-line summary."""
+    """Write one Ravnkloa shore-radar CSV as a recording in ``out`` (new or empty; ``overwrite`` replaces an
+    earlier run there); returns a one-line summary."""
+    from seatwin.outputs import remove_outputs
+    from seatwin.recording.manifest import check_new_run
+
+    stale = check_new_run(out, "out", inputs=[csv_path, map_path], overwrite=overwrite)
     ds = read_ravnkloa_radar(csv_path)
     hints: dict = {"tuning": "ravnkloa", "radar_merge": 3.0}
     if map_path is not None:
@@ -287,4 +302,5 @@ def import_ravnkloa_radar(
         "note": "shore radar recorded as a stationary ownship; times = file name (UTC) + scan_time_s",
         "tracking": hints,
     }
+    remove_outputs(stale)
     return _write(ds, out, fmt, platform="ravnkloa_radar", metadata=meta)

@@ -15,7 +15,6 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-from seatwin.errors import InputError
 from seatwin.pipeline.compare import CompareResult, compare_runs
 from seatwin.pipeline.simulate import simulate_run
 
@@ -32,6 +31,10 @@ class DemoResult:
     comparison: CompareResult
 
 
+DEMO_OUTPUTS = ("scenarios", "reality", "simulator", "report", "comparison.json")
+"""What the demo writes into its folder."""
+
+
 def run_demo(
     out: str | Path = "runs/demo",
     *,
@@ -40,16 +43,18 @@ def run_demo(
     seed: int = 1,
     step: Callable[[str], None] | None = None,
     progress: bool = False,
+    overwrite: bool = False,
 ) -> DemoResult:
-    """Run the demo into ``out`` (refused if an earlier demo is there); ``step(title)`` announces each step."""
+    """Run the demo into ``out`` (an earlier demo there is refused, or with ``overwrite`` replaced; other files
+    stay); ``step(title)`` announces each step."""
     from seatwin.evaluation import CompareOptions
+    from seatwin.outputs import check_output_folder, remove_outputs, write_text_atomic
     from seatwin.scenario.builtin import builtin_names, builtin_scenario
     from seatwin.scenario.plot import plot_scenario
 
     out = Path(out)
     announce = step or (lambda _title: None)
-    if (out / "reality").exists() or (out / "simulator").exists():
-        raise InputError(out, "an earlier demo is here; remove it or choose another output folder")
+    remove_outputs(check_output_folder(out, "out", DEMO_OUTPUTS, overwrite=overwrite))
     figures = out / "scenarios"
     figures.mkdir(parents=True, exist_ok=True)
     announce("plot the built-in scenarios")
@@ -69,6 +74,6 @@ def run_demo(
         report_dir=out / "report",
     )
     json_path = out / "comparison.json"
-    json_path.write_text(json.dumps(result.to_json(), indent=2) + "\n")
+    write_text_atomic(json_path, json.dumps(result.to_json(), indent=2) + "\n")
     assert result.report is not None
     return DemoResult(figures, out / "reality", out / "simulator", json_path, result.report, result)

@@ -45,17 +45,21 @@ def _stamp(msg: Any) -> int:
     return int(msg.header.stamp.sec) * 1_000_000_000 + int(msg.header.stamp.nanosec)
 
 
-def export_coco(run: str | Path, out: str | Path, min_visible_fraction: float = 0.0) -> CocoExport:
+def export_coco(run: str | Path, out: str | Path, min_visible_fraction: float = 0.0, *, overwrite: bool = False) -> CocoExport:
     """Every camera image of the recording in ``run`` as PNG in ``out/images`` and ``out/annotations.json``.
 
     Labels whose ``visible_fraction`` is at most ``min_visible_fraction`` are left out (default:
-    only vessels hidden completely).
+    only vessels hidden completely). An earlier export in ``out`` is refused unless ``overwrite``; then the
+    images its ``annotations.json`` lists are removed first (other files in ``out`` stay).
     """
+    from seatwin.outputs import check_output_folder, write_text_atomic
     from seatwin.perception.camera_frames import label_boxes
     from seatwin.recording import open_bag
     from seatwin.recording.images import image_to_array
 
     out = Path(out)
+    if check_output_folder(out, "out", ["images", "annotations.json"], inputs=[run], overwrite=overwrite):
+        _remove_earlier_export(out)
     with open_bag(run) as rec:
         image_topics = [t for t, i in sorted(rec.topics.items()) if i.msgtype == "sensor_msgs/msg/Image"]
         if not image_topics:
@@ -116,8 +120,22 @@ def export_coco(run: str | Path, out: str | Path, min_visible_fraction: float = 
         "categories": COCO_CATEGORIES,
     }
     path = out / "annotations.json"
-    path.write_text(json.dumps(coco, indent=1))
+    write_text_atomic(path, json.dumps(coco, indent=1))
     return CocoExport(out, len(images), len(annotations), path)
+
+
+def _remove_earlier_export(out: Path) -> None:
+    """Remove the annotations file of an earlier export and the images it lists (nothing else)."""
+    path = out / "annotations.json"
+    try:
+        listed = [im["file_name"] for im in json.loads(path.read_text(encoding="utf-8")).get("images", [])]
+    except (OSError, ValueError, TypeError, KeyError, AttributeError):
+        listed = []
+    for name in listed:
+        target = (out / str(name)).resolve()
+        if target.parent == (out / "images").resolve() and target.suffix == ".png":
+            target.unlink(missing_ok=True)
+    path.unlink(missing_ok=True)
 
 
 def draw_boxes(bgr: NDArray[np.uint8], labels: list[Any]) -> Any:
@@ -139,11 +157,20 @@ class Snapshot:
 
 
 def camera_snapshot(
-    scenario: Any, time: float, out: str | Path, *, absolute: bool = False, boxes: bool = True, harbour: str | None = None
+    scenario: Any,
+    time: float,
+    out: str | Path,
+    *,
+    absolute: bool = False,
+    boxes: bool = True,
+    harbour: str | None = None,
+    overwrite: bool = False,
 ) -> Snapshot:
     """Render the rig of ``scenario`` (a name, a file or a :class:`~seatwin.scenario.Scenario`) at ``time``
     seconds after its start (POSIX with ``absolute``) into ``out/<camera>.png`` with the boxes drawn, in
-    ``harbour`` ('default', 'ravnkloa', 'none', a raster; default: the scenario's own)."""
+    ``harbour`` ('default', 'ravnkloa', 'none', a raster; default: the scenario's own); existing images are
+    replaced only with ``overwrite``."""
+    from seatwin.outputs import atomic_output, check_output_folder
     from seatwin.scenario import Scenario
     from seatwin.scenario.load import load_scenario
     from seatwin.sensors.camera.config import CameraConfig
@@ -158,16 +185,19 @@ def camera_snapshot(
         from seatwin.errors import ParameterError
 
         raise ParameterError("time", f"{t - sc.start:.3f} s is outside the scenario (0 … {sc.end - sc.start:.3f} s)")
-    sensor = CameraSensor(CameraConfig(), Scene.from_scenario(sc, harbour=harbour), sc.ownship.name)
+    config = CameraConfig()
     out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    inputs = [scenario, harbour] if not isinstance(scenario, Scenario) else [harbour]
+    check_output_folder(out, "out", [f"{n}.png" for n in config.names], inputs=inputs, overwrite=overwrite)
+    sensor = CameraSensor(config, Scene.from_scenario(sc, harbour=harbour), sc.ownship.name)
     files, labels = [], {}
     for img in sensor.capture(t, 0):
         path = out / f"{img.name}.png"
-        if boxes:
-            draw_boxes(img.bgr, img.labels).save(path, format="PNG")
-        else:
-            _save_png(path, img.bgr)
+        with atomic_output(path) as tmp:
+            if boxes:
+                draw_boxes(img.bgr, img.labels).save(tmp, format="PNG")
+            else:
+                _save_png(tmp, img.bgr)
         files.append(path)
         labels[img.name] = img.labels
     return Snapshot(files, labels)

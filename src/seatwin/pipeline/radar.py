@@ -39,11 +39,14 @@ def simulate_radar(
     start_offset: float = 0.0,
     duration: float | None = None,
     fmt: str = "mcap",
+    overwrite: bool = False,
 ) -> RadarSimulation:
     """The radar on ``scenario``'s ownship from ``start_offset`` seconds after its start for ``duration`` seconds
-    (default: to its end), bit-identical per ``seed``."""
+    (default: to its end), bit-identical per ``seed``. Everything is validated before anything is written;
+    existing outputs are replaced only with ``overwrite`` (the CSV through a temporary file, renamed at the end)."""
     import numpy as np
 
+    from seatwin.outputs import atomic_output
     from seatwin.scenario.load import load_scenario
     from seatwin.sensors.radar.plots import KIND_NAMES
     from seatwin.sim import SimulationSettings, frames, scenario_sensors, simulate_scenario
@@ -59,12 +62,14 @@ def simulate_radar(
         SimulationSettings,
         {"sensors": ("radar",), "radar_config": radar_config, "seed": seed, "fmt": fmt, "radar_spokes": spokes_dir is not None},
     )
+    t0, t1 = time_window(sc.start, sc.end, sc.start + start_offset, duration)  # a bad window: refused, nothing written
+    _check_outputs(sc, settings, plots_csv, run_dir, spokes_dir, overwrite)
     counts = {"scans": 0, "plots": 0}
     with contextlib.ExitStack() as stack:
         rows = None
         if plots_csv is not None:
-            plots_csv.parent.mkdir(parents=True, exist_ok=True)
-            rows = csv.writer(stack.enter_context(plots_csv.open("w", newline="")))
+            tmp_csv = stack.enter_context(atomic_output(plots_csv))
+            rows = csv.writer(stack.enter_context(tmp_csv.open("w", newline="")))
             rows.writerow(PLOT_COLUMNS)
         if spokes_dir is not None:
             spokes_dir.mkdir(parents=True, exist_ok=True)
@@ -94,12 +99,39 @@ def simulate_radar(
 
         if run_dir is not None:
             simulate_scenario(
-                sc, run_dir, settings, start=sc.start + start_offset, duration=duration, progress=False, on_frame=export
+                sc,
+                run_dir,
+                settings,
+                start=sc.start + start_offset,
+                duration=duration,
+                progress=False,
+                on_frame=export,
+                overwrite=overwrite,
             )
         else:
             radar = [s for s in scenario_sensors(sc, settings) if isinstance(s, RadarSensor)]
-            t0, t1 = time_window(sc.start, sc.end, sc.start + start_offset, duration)
             for t, i, k, data in frames(radar, t0, t1):
                 export(radar[i], t, k, data)
     outputs = [p for p in (plots_csv, run_dir, spokes_dir) if p is not None]
     return RadarSimulation(counts["scans"], counts["plots"], outputs)
+
+
+def _check_outputs(
+    sc: Any, settings: Any, plots_csv: Path | None, run_dir: Path | None, spokes_dir: Path | None, overwrite: bool
+) -> None:
+    """Refuse, before any work, outputs that replace an input or each other, exist (unless ``overwrite``) or
+    cannot be written."""
+    from seatwin.outputs import check_output_file, check_output_folder, refuse_inputs, refuse_same
+    from seatwin.recording.manifest import check_new_run
+    from seatwin.sim.run import run_inputs
+
+    inputs = run_inputs(sc, settings)
+    if plots_csv is not None:
+        check_output_file(plots_csv, "plots_csv", inputs=inputs, overwrite=overwrite, outputs=[run_dir, spokes_dir])
+    if run_dir is not None:
+        refuse_same(run_dir, "run_dir", [spokes_dir])
+        check_new_run(run_dir, "run_dir", inputs=inputs, overwrite=overwrite)
+    if spokes_dir is not None:
+        refuse_inputs(spokes_dir, "spokes_dir", inputs)
+        earlier = sorted(p.name for p in spokes_dir.glob("scan_*.npz")) if spokes_dir.is_dir() else []
+        check_output_folder(spokes_dir, "spokes_dir", earlier, inputs=inputs, overwrite=overwrite)

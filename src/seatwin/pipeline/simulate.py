@@ -23,21 +23,31 @@ def simulate_run(
     date: dt.date | None = None,
     progress: bool | Callable[[float, float], None] = True,
     on_frame: Callable[[Any, float, int, Any], None] | None = None,
+    overwrite: bool = False,
     **changes: Any,
 ) -> SimulationResult:
     """Simulate ``scenario`` (built-in name, .yaml, Gemini .csv — ``date`` for TimeOfDay CSVs — or a
     :class:`Scenario`) into the new run directory ``out`` from POSIX ``start`` or ``start_offset`` seconds after the
     scenario's start (default: its start); ``changes`` override ``settings`` fields; ``on_frame(sensor, t,
-    frame, data)`` sees every frame (``--stream``)."""
+    frame, data)`` sees every frame (``--stream``). ``out`` must be new or empty; ``overwrite`` replaces an
+    earlier run there (never an input, never a file seatwin did not write)."""
+    from seatwin.recording.manifest import check_new_run
     from seatwin.scenario import Scenario
     from seatwin.scenario.load import load_scenario
     from seatwin.sim import simulate_scenario
+    from seatwin.sim.run import run_inputs
+    from seatwin.sim.settings import SimulationSettings
 
     if start is not None and start_offset is not None:
         from seatwin.errors import ParameterError
 
         raise ParameterError("start_offset", "give a start time or an offset after the scenario's start, not both")
     sc = scenario if isinstance(scenario, Scenario) else load_scenario(str(scenario), date=date)
+    chosen = SimulationSettings.model_construct(**{**(settings or SimulationSettings()).model_dump(), **changes})
+    inputs = [*([] if isinstance(scenario, Scenario) else [scenario]), *run_inputs(sc, chosen)]
+    check_new_run(out, "out", inputs=inputs, overwrite=overwrite)  # the same check as simulate_scenario's, naming ``out``
     if start_offset is not None:
         start = sc.start + float(start_offset)
-    return simulate_scenario(sc, out, settings, start=start, duration=duration, progress=progress, on_frame=on_frame, **changes)
+    return simulate_scenario(
+        sc, out, settings, start=start, duration=duration, progress=progress, on_frame=on_frame, overwrite=overwrite, **changes
+    )

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import os
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
@@ -17,14 +18,37 @@ from seatwin.errors import InputError
 
 MANIFEST_NAME = "manifest.json"
 MANIFEST_VERSION = 1
+RUN_SCENARIO_FILES = ("scenario.yaml", "scenario.csv")
+"""The scenario a simulated run records beside its bag (the YAML and its Gemini CSV)."""
 
 
 def write_manifest(run_dir: Path, data: dict[str, Any]) -> None:
-    """Atomically write ``run_dir/manifest.json``."""
+    """Atomically write ``run_dir/manifest.json``. On a full disk, where even the small temporary file cannot be
+    written, it is removed and the manifest is rewritten in place when the blocks it has hold the new text
+    (a run that fails writes its error this way); otherwise the ``OSError`` is raised, the old manifest intact."""
     path = Path(run_dir) / MANIFEST_NAME
     tmp = path.with_name(path.name + ".part")
-    tmp.write_text(json.dumps(data, indent=2, sort_keys=False, default=_default) + "\n", encoding="utf8")
-    os.replace(tmp, path)
+    text = (json.dumps(data, indent=2, sort_keys=False, default=_default) + "\n").encode("utf8")
+    try:
+        tmp.write_bytes(text)
+        os.replace(tmp, path)
+    except OSError:
+        tmp.unlink(missing_ok=True)
+        if not _rewrite_in_place(path, text):
+            raise
+
+
+def _rewrite_in_place(path: Path, text: bytes) -> bool:
+    """Overwrite ``path`` with ``text`` without allocating: only when its blocks already hold that many bytes."""
+    try:
+        if len(text) > path.stat().st_blocks * 512:
+            return False
+        with path.open("r+b") as f:
+            f.write(text)
+            f.truncate()
+    except OSError:
+        return False
+    return True
 
 
 def read_manifest(run_dir: Path) -> dict[str, Any] | None:
@@ -39,6 +63,34 @@ def read_manifest(run_dir: Path) -> dict[str, Any] | None:
     if not isinstance(data, dict):
         raise InputError(path, "expected a JSON object")
     return data
+
+
+def check_new_run(
+    run_dir: str | os.PathLike[str],
+    param: str,
+    *,
+    inputs: Iterable[str | os.PathLike[str] | None] = (),
+    overwrite: bool = False,
+    extra: Iterable[str] = (),
+) -> list[Path]:
+    """Refuse, before any work, a folder for a new run that is an input or inside one, or that exists and is
+    not empty — unless ``overwrite``: then only an earlier run's entries (manifest, bag of any format, the
+    scenario files, and ``extra``) are replaced, and only where a seatwin manifest shows seatwin wrote them.
+    Returns the earlier entries to remove (:func:`seatwin.outputs.remove_outputs`) once the run's inputs are
+    validated."""
+    from seatwin.outputs import check_run_folder
+    from seatwin.recording.storage import BAG_STEM
+
+    names = (MANIFEST_NAME, MANIFEST_NAME + ".part", BAG_STEM, f"{BAG_STEM}.bag", *RUN_SCENARIO_FILES, *extra)
+    return check_run_folder(run_dir, param, names, _is_seatwin_run, inputs=inputs, overwrite=overwrite)
+
+
+def _is_seatwin_run(run_dir: Path) -> bool:
+    try:
+        manifest = read_manifest(run_dir)
+    except InputError:
+        return False
+    return manifest is not None and "manifest_version" in manifest
 
 
 def _default(obj: Any) -> Any:

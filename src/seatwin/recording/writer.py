@@ -71,8 +71,9 @@ def _timed(method: F) -> F:
     return wrapper  # type: ignore[return-value]
 
 
-class RecordingError(RuntimeError):
-    """Writing the recording failed (e.g. out of disk); the bag so far stays readable, the manifest says incomplete."""
+class RecordingError(OSError):
+    """Writing the recording failed (e.g. out of disk); the bag so far stays readable, the manifest says incomplete.
+    An ``OSError``, so the CLI prints it as one line."""
 
 
 class RecordingWriter:

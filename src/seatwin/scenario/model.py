@@ -7,6 +7,7 @@ the samples (``numpy.gradient``), also interpolated linearly, so they are contin
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from enum import Enum
 from typing import Any
@@ -158,6 +159,12 @@ class Scenario:
     """Name of the ownship's sensor rig."""
     source: str = "<memory>"
     description: str = ""
+
+    @property
+    def files(self) -> list[str]:
+        """The files the scenario was read from (its own and its trajectories'), to never write over them."""
+        names = [self.source, *(re.sub(r" \([^()]*\)$", "", v.trajectory.source) for v in self.vessels)]  # "f.csv (vessel 1)"
+        return list(dict.fromkeys(n for n in names if n and not n.startswith("<")))
 
     def __post_init__(self) -> None:
         if not self.vessels:

@@ -140,8 +140,10 @@ def plot_scenario(scenario: Scenario, out: str | os.PathLike[str], tick_s: float
         ax.grid(True, lw=0.3, alpha=0.6)
         ax.legend(loc="best", fontsize=8)
         fig.tight_layout()
-        out.parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(out)
+        from seatwin.outputs import atomic_output
+
+        with atomic_output(out) as tmp:
+            fig.savefig(tmp, format="png")
     finally:
         plt.close(fig)
     return out

@@ -76,5 +76,10 @@ def plot_sweep_top_view(
     ax.set_title(title, fontsize=9)
     fig.colorbar(sc, ax=ax, label="intensity", shrink=0.8)
     fig.tight_layout()
-    fig.savefig(output)
-    plt.close(fig)
+    from seatwin.outputs import atomic_output
+
+    try:
+        with atomic_output(output) as tmp:
+            fig.savefig(tmp, format=Path(output).suffix.lstrip(".").lower() or "png")
+    finally:
+        plt.close(fig)

@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from seatwin.errors import InputError
-from seatwin.recording.manifest import MANIFEST_NAME
+from seatwin.recording.manifest import RUN_SCENARIO_FILES, check_new_run
 from seatwin.scenario import Scenario
 from seatwin.settings import validated
 from seatwin.sim.loop import SimulationResult, simulate
@@ -16,7 +16,7 @@ from seatwin.sim.sensors import GroundTruthSensor, LidarSensor, SimSensor
 from seatwin.sim.settings import SimulationSettings
 from seatwin.sim.timing import time_window
 
-RESOLVED_SCENARIO = "scenario.yaml"
+RESOLVED_SCENARIO = RUN_SCENARIO_FILES[0]
 
 
 def seeded(scenario: Scenario, settings: SimulationSettings) -> Scenario:
@@ -99,6 +99,13 @@ def water_mask_hint(scenario: Scenario, settings: SimulationSettings) -> str:
     return str(harbour_file(harbour).resolve())  # type: ignore[union-attr]
 
 
+def run_inputs(scenario: Scenario, settings: SimulationSettings) -> list[str]:
+    """The files a simulation of ``scenario`` reads (scenario, trajectories, radar configuration, harbour raster),
+    which its outputs must never replace."""
+    harbour = settings.harbour if settings.harbour is not None else scenario.environment.get("harbour")
+    return [*scenario.files, *(str(p) for p in (settings.radar_config, harbour) if p is not None)]
+
+
 def simulate_scenario(
     scenario: Scenario,
     run_dir: str | Path,
@@ -108,6 +115,7 @@ def simulate_scenario(
     duration: float | None = None,
     progress: bool | Callable[[float, float], None] = True,
     on_frame: Callable[[SimSensor, float, int, Any], None] | None = None,
+    overwrite: bool = False,
     **changes: Any,
 ) -> SimulationResult:
     """Simulate the ownship's sensors along ``scenario`` into a new recording in ``run_dir``.
@@ -115,13 +123,15 @@ def simulate_scenario(
     ``settings`` (default :class:`SimulationSettings`), with ``changes`` to its fields
     (``lidar_mode="depthbuffer"``, ``ray_drop=0.5``…); ``start`` POSIX seconds (default: the
     scenario's start), ``duration`` seconds (default: to its end); ``on_frame`` as in :func:`simulate`.
+    ``run_dir`` must be new or empty; with ``overwrite`` an earlier run there is replaced once everything
+    is validated (:func:`~seatwin.recording.manifest.check_new_run`: a user's other files stay).
     """
+    from seatwin.outputs import remove_outputs
     from seatwin.scenario.load import save_scenario
 
     settings = validated(SimulationSettings, {**(settings or SimulationSettings()).model_dump(), **changes})
     run_dir = Path(run_dir)
-    if (run_dir / MANIFEST_NAME).exists():
-        raise InputError(run_dir, "a recording exists here already; choose a new run directory")
+    stale = check_new_run(run_dir, "run_dir", inputs=run_inputs(scenario, settings), overwrite=overwrite)
     t0, t1 = time_window(scenario.start, scenario.end, start, duration)
     scenario = seeded(scenario, settings)
     sensors = scenario_sensors(scenario, settings)
@@ -131,6 +141,7 @@ def simulate_scenario(
     warn_on_land(scenario, harbour)
     # The run's scenario.yaml names the harbour the run was simulated in.
     scenario = dataclasses.replace(scenario, environment={**scenario.environment, "harbour": harbour})
+    remove_outputs(stale)
     try:
         run_dir.mkdir(parents=True, exist_ok=True)
     except OSError as exc:

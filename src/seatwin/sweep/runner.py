@@ -21,6 +21,9 @@ from seatwin.sweep.degradations import reference_model
 from seatwin.sweep.results import REFERENCE_KIND, SweepResult, SweepRow
 from seatwin.sweep.settings import SweepSettings
 
+SWEEP_OUTPUTS = ("sweep.csv", "sweep.json", "sweep.png")
+"""The result files of a sweep (beside its jobs/ folder)."""
+
 
 def _row(kind: str, strength: float, seed: int, ref_seed: int, rows: list[dict[str, Any]]) -> SweepRow:
     """The overall fidelity score (S5) and AHED (mean over targets) of one comparison's per-target ``rows``."""
@@ -49,6 +52,7 @@ def run_sweep(
     workers: int = 0,
     address: str | None = None,
     progress: Callable[[int, int], None] | None = None,
+    overwrite: bool = False,
     **changes: Any,
 ) -> SweepResult:
     """Run the sweep of ``settings`` (default :class:`SweepSettings`, with field ``changes``) into ``out_dir``.
@@ -58,10 +62,13 @@ def run_sweep(
     instance of ``workers`` CPUs, or on the Ray cluster at ``address``; results identical either way.
     Each job's outcome is kept under ``out_dir/jobs``, so an interrupted sweep resumes where it
     stopped. ``progress(done, total)`` is called as jobs finish. A failed job is an :class:`InputError`.
+    ``out_dir`` remembers the settings (:func:`seatwin.campaign.folder.claim_experiment_folder`): another sweep's
+    results there are refused, or with ``overwrite`` removed first.
     """
     from pydantic import TypeAdapter
 
-    from seatwin.campaign.engine import run_jobs
+    from seatwin.campaign.engine import JOBS_DIR, run_jobs
+    from seatwin.campaign.folder import claim_experiment_folder
     from seatwin.campaign.grid import reference_job, synthetic_job
     from seatwin.campaign.job import campaign_job
     from seatwin.errors import InputError
@@ -87,6 +94,16 @@ def run_sweep(
         for strength in settings.strengths_of(d):
             points += [(d.kind, strength, s, synthetic_job(refs[s], s, d.settings(strength), comparison)) for s in settings.seeds]
     jobs = list(refs.values()) + [job for *_, job in points]
+    claim_experiment_folder(
+        out_dir,
+        "out_dir",
+        kind="sweep",
+        settings=settings.model_dump(mode="json"),
+        files=[settings.scenario, settings.tuning],
+        source=None,
+        outputs=(*SWEEP_OUTPUTS, JOBS_DIR),
+        overwrite=overwrite,
+    )
     in_process = workers == 0 and address is None
     report = run_jobs(
         jobs,

@@ -94,15 +94,19 @@ def fig_error_vs_distance(path: Path, row: TableRow, title: str, extra: TableRow
     return path
 
 
+ERROR_PLOTS = ["fig4_6_filter_mask.png", "fig4_8_camera_gain.png", "fig4_12_rgb_error.png", "fig4_13_lidar_error.png"]
+"""The files :func:`write_error_plots` writes."""
+
+
 def write_error_plots(out: Path) -> list[Path]:
-    """Write Fig. 4.6, 4.8, 4.12 and 4.13 into ``out``."""
+    """Write Fig. 4.6, 4.8, 4.12 and 4.13 into ``out`` (:data:`ERROR_PLOTS`)."""
     out.mkdir(parents=True, exist_ok=True)
     return [
-        fig_filter_mask(out / "fig4_6_filter_mask.png"),
-        fig_camera_gain(out / "fig4_8_camera_gain.png"),
-        fig_error_vs_distance(out / "fig4_12_rgb_error.png", rgb_row(), "Fig. 4.12: RGB camera (Table 4.1)"),
+        fig_filter_mask(out / ERROR_PLOTS[0]),
+        fig_camera_gain(out / ERROR_PLOTS[1]),
+        fig_error_vs_distance(out / ERROR_PLOTS[2], rgb_row(), "Fig. 4.12: RGB camera (Table 4.1)"),
         fig_error_vs_distance(
-            out / "fig4_13_lidar_error.png",
+            out / ERROR_PLOTS[3],
             lidar_row(),
             "Fig. 4.13: lidar (Table 4.1 as printed)",
             extra=lidar_equation_row("lidar_eq417", 8, n_ch=3104),

@@ -202,7 +202,8 @@ def save_radar_config(config: RadarConfig, path: str | Path) -> Path:
     """Write ``config`` as YAML under a top-level ``radar:`` key; returns the path."""
     import yaml
 
+    from seatwin.outputs import write_text_atomic
+
     p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    p.write_text(yaml.safe_dump({"radar": config.model_dump(mode="json")}, sort_keys=False))
+    write_text_atomic(p, yaml.safe_dump({"radar": config.model_dump(mode="json")}, sort_keys=False))
     return p
