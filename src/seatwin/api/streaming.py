@@ -297,7 +297,7 @@ def record_stream(
     """Start a ``SensorStreaming`` + ``Navigation`` server recording into the new run directory ``run_dir``."""
     import grpc
 
-    from seatwin.api.server import SERVER_OPTIONS, bind, check_port
+    from seatwin.api.server import STREAM_MAX_MESSAGE_BYTES, bind, check_port, server_options
     from seatwin.recording import RecordingWriter
     from seatwin.recording.manifest import MANIFEST_NAME
     from seatwin.scenario.defaults import RAVNKLOA
@@ -309,7 +309,7 @@ def record_stream(
     run_dir.mkdir(parents=True, exist_ok=True)
     writer = RecordingWriter(run_dir, fmt, origin=RAVNKLOA, metadata={"recorded_by": "seatwin record-stream"})
     recorder = StreamRecorder(writer, ownship)
-    server = grpc.server(futures.ThreadPoolExecutor(max_workers=4), options=SERVER_OPTIONS)
+    server = grpc.server(futures.ThreadPoolExecutor(max_workers=8), options=server_options(STREAM_MAX_MESSAGE_BYTES))
     servicer = _Servicer(recorder)
     sensorstreaming_pb2_grpc.add_SensorStreamingServicer_to_server(servicer, server)
     navigation_pb2_grpc.add_NavigationServicer_to_server(servicer, server)

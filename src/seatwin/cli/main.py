@@ -69,9 +69,13 @@ for _name in COMMAND_MODULES:
 
 def run(argv: Sequence[str] | None = None) -> int:
     """Run the CLI with ``argv``; return the exit status (used by ``main`` and by tests)."""
+    from seatwin.interrupts import interrupts_raise
+
     try:
         # Without standalone mode, a command's typer.Exit(n) comes back as the return value, not an exception.
-        code = app(args=list(argv) if argv is not None else None, prog_name="seatwin", standalone_mode=False)
+        # SIGTERM stops a verb as Ctrl-C does (a KeyboardInterrupt), never in the middle of a frame.
+        with interrupts_raise():
+            code = app(args=list(argv) if argv is not None else None, prog_name="seatwin", standalone_mode=False)
     except ParameterError as exc:
         typer.echo(f"seatwin: error: {exc.render(flag_for(exc.param))}", err=True)
         return 2
@@ -83,8 +87,8 @@ def run(argv: Sequence[str] | None = None) -> int:
     except typer.Abort:
         typer.echo("seatwin: aborted", err=True)
         return 130
-    except KeyboardInterrupt:
-        typer.echo("seatwin: interrupted", err=True)
+    except KeyboardInterrupt as exc:
+        typer.echo(f"seatwin: interrupted{f' ({exc})' if str(exc) else ''}", err=True)
         return 130
     except typer.TyperException as exc:  # usage errors: unknown verb or option, bad value, missing option
         typer.echo(f"seatwin: error: {exc.format_message()}", err=True)
