@@ -131,3 +131,62 @@ def test_rosbag2_without_metadata_yaml(tmp_path: Path) -> None:
     with open_bag(tmp_path / "run" / "recording") as rec:
         assert rec.recovered
         assert len(list(rec.point_clouds("/lidar/points"))) == 3
+
+
+def _disk_full_from(monkeypatch: pytest.MonkeyPatch, storage_cls: type, after: int) -> None:
+    """From the ``after``-th call on, the storage's writes and every new file (the manifest's ``.part``) fail
+    with ENOSPC, as on a full disk (a new file is left empty, as the kernel leaves it)."""
+    import pathlib
+
+    calls = [0]
+    full = [False]
+    write_many, write_text = storage_cls.write_many, pathlib.Path.write_text
+
+    def failing_write_many(self, items, timestamp):
+        calls[0] += 1
+        if calls[0] >= after:
+            full[0] = True
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        return write_many(self, items, timestamp)
+
+    def failing_write_text(self, *args, **kwargs):
+        if full[0] and self.name.endswith(".part"):
+            self.touch()
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(self))
+        return write_text(self, *args, **kwargs)
+
+    monkeypatch.setattr(storage_cls, "write_many", failing_write_many)
+    monkeypatch.setattr(pathlib.Path, "write_text", failing_write_text)
+
+
+def test_full_disk_finishes_the_manifest_with_the_error(tmp_path: Path, fmt: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    from seatwin.recording.storage import STORAGES
+
+    w = RecordingWriter(tmp_path / "run", fmt, flush_interval_s=0.2, manifest_wall_s=0.0)
+    _disk_full_from(monkeypatch, STORAGES[fmt], after=20)
+    with pytest.raises(RecordingError, match="No space left on device") as e:
+        for k in range(100):
+            w.write_sweep("/lidar/points", "lidar", T0 + 0.1 * k, **sweep(k, n=100))
+    assert str(e.value).startswith(str(w.bag))
+    manifest = json.loads((tmp_path / "run" / "manifest.json").read_text())
+    assert manifest["completed"] is False and "No space left on device" in manifest["error"]
+    assert manifest["finished_utc"] is not None
+    assert not (tmp_path / "run" / "manifest.json.part").exists()
+    monkeypatch.undo()
+    with open_bag(tmp_path / "run") as rec:
+        assert rec.complete is False and len(list(rec.point_clouds())) >= 10
+
+
+def test_simulate_on_a_full_disk_is_one_line_and_exit_2(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from seatwin.recording.storage import McapStorage
+
+    _disk_full_from(monkeypatch, McapStorage, after=50)
+    code = run(["simulate", "ferry_crossing", "--out", str(tmp_path / "r"), "--sensors", "lidar", "--duration", "10", "-q"])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1 and "No space left on device" in err and "Traceback" not in err
+    assert err.startswith(f"seatwin: error: {tmp_path / 'r' / 'recording'}: recording stopped")
+    manifest = json.loads((tmp_path / "r" / "manifest.json").read_text())
+    assert manifest["completed"] is False and "No space left on device" in manifest["error"]
+    assert not (tmp_path / "r" / "manifest.json.part").exists()

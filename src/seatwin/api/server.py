@@ -34,6 +34,7 @@ import grpc
 from seatwin.api.lockstep import LockstepSettings, LockstepSimulation
 from seatwin.api.proto import gemini_osp_pb2, gemini_osp_pb2_grpc
 from seatwin.errors import InputError, ParameterError
+from seatwin.recording import RecordingError
 from seatwin.sim.loop import SimulationResult, StepInterrupted
 
 MAX_MESSAGE_BYTES = 256 * 1024 * 1024
@@ -110,6 +111,8 @@ class SimulationServicer(gemini_osp_pb2_grpc.SimulationServicer):
                 self._refuse(context, grpc.StatusCode.UNAVAILABLE, "the server is shutting down; no more steps are taken")
             try:
                 self.worker.submit(fn).result()
+            except RecordingError as exc:  # the disk, not the request
+                self._refuse(context, grpc.StatusCode.INTERNAL, str(exc))
             except InputError as exc:
                 self._refuse(context, grpc.StatusCode.INVALID_ARGUMENT, _message(exc))
             except StepInterrupted as exc:

@@ -3,11 +3,14 @@
 Written when the recording opens (``completed: false``), refreshed at every flush and rewritten
 with ``completed: true`` on a clean close. Each write goes to a temporary file that is renamed, so
 the manifest is never half-written; a run killed before its first flush may have none — both
-mean *incomplete*.
+mean *incomplete*. When the disk is full, the temporary file cannot be written: the manifest is
+then rewritten in place, compact (no indentation, so it fits in the blocks the last one used), so a
+run that failed still says why.
 """
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 from pathlib import Path
@@ -23,8 +26,28 @@ def write_manifest(run_dir: Path, data: dict[str, Any]) -> None:
     """Atomically write ``run_dir/manifest.json``."""
     path = Path(run_dir) / MANIFEST_NAME
     tmp = path.with_name(path.name + ".part")
-    tmp.write_text(json.dumps(data, indent=2, sort_keys=False, default=_default) + "\n", encoding="utf8")
-    os.replace(tmp, path)
+    try:
+        tmp.write_text(json.dumps(data, indent=2, sort_keys=False, default=_default) + "\n", encoding="utf8")
+        os.replace(tmp, path)
+    except OSError:
+        with contextlib.suppress(OSError):
+            tmp.unlink()  # a full disk leaves it empty or cut: never leave it behind
+        if not path.is_file():
+            raise
+        try:
+            _overwrite(path, (json.dumps(data, separators=(",", ":"), default=_default) + "\n").encode("utf8"))
+        except OSError:
+            pass
+        else:
+            return
+        raise
+
+
+def _overwrite(path: Path, data: bytes) -> None:
+    """Rewrite ``path`` in place (its blocks reused: no new space needed when ``data`` is not longer)."""
+    with path.open("r+b") as f:
+        f.write(data)
+        f.truncate(len(data))
 
 
 def read_manifest(run_dir: Path) -> dict[str, Any] | None:

@@ -71,8 +71,10 @@ def _timed(method: F) -> F:
     return wrapper  # type: ignore[return-value]
 
 
-class RecordingError(RuntimeError):
-    """Writing the recording failed (e.g. out of disk); the bag so far stays readable, the manifest says incomplete."""
+class RecordingError(InputError):
+    """Writing the recording failed (e.g. out of disk): names the bag; the bag so far stays readable, the
+    manifest says incomplete and why. An :class:`~seatwin.errors.InputError`, so the CLI prints one line
+    and exits with status 2."""
 
 
 class RecordingWriter:
@@ -197,7 +199,7 @@ class RecordingWriter:
     def _write_batch(self, t: float, items: Sequence[tuple[str, str, bytes | memoryview]]) -> None:
         """Write serialised messages all stamped ``t`` (one stamp conversion, one flush check); count them."""
         if self._closed:
-            raise RecordingError(f"{self.bag}: recording is closed")
+            raise RecordingError(self.bag, "recording is closed")
         t0 = _time.perf_counter()
         try:
             stamp = M.stamp_ns(t)
@@ -247,13 +249,15 @@ class RecordingWriter:
             self._fail(exc)
 
     def _fail(self, exc: OSError) -> None:
-        self._error = f"{type(exc).__name__}: {exc}"
+        self._error = f"{type(exc).__name__}: {_strerror(exc)}"
         self._closed = True
         with contextlib.suppress(Exception):  # the bag is being abandoned; its readable prefix stays
             self.storage.abort()
         with contextlib.suppress(OSError):
             self._write_manifest()
-        raise RecordingError(f"{self.bag}: recording stopped: {self._error}; the bag is readable up to its last flush") from exc
+        raise RecordingError(
+            self.bag, f"recording stopped: {_strerror(exc)}; the bag is readable up to its last flush ({MANIFEST_NAME} says so)"
+        ) from exc
 
     # ------------------------------------------------------------------ typed helpers
     @_timed
@@ -443,13 +447,16 @@ class RecordingWriter:
         try:
             self.storage.close()
         except OSError as exc:
-            self._error = f"{type(exc).__name__}: {exc}"
+            self._error = f"{type(exc).__name__}: {_strerror(exc)}"
             with contextlib.suppress(Exception):
                 self.storage.abort()
             completed = False
-        self._write_manifest(completed=completed and self._error is None)
+        try:
+            self._write_manifest(completed=completed and self._error is None)
+        except OSError as exc:
+            raise RecordingError(self.run_dir / MANIFEST_NAME, f"cannot write the manifest: {_strerror(exc)}") from exc
         if self._error and not error:
-            raise RecordingError(f"{self.bag}: closing failed: {self._error}")
+            raise RecordingError(self.bag, f"closing failed: {self._error}")
 
     @property
     def manifest(self) -> dict[str, Any]:
@@ -473,6 +480,11 @@ def open_recording(run_dir: str | os.PathLike[str], fmt: str = "mcap", **kwargs:
 ENU_NED_ROTATION = (0.7071067811865475, 0.7071067811865475, 0.0, 0.0)
 """The rotation of ``world_ned`` in the ENU display frame: ``quaternion_from_matrix(R_ENU_NED)`` (tested),
 written out so that the first recorded step does not wait for scipy to load."""
+
+
+def _strerror(exc: OSError) -> str:
+    """An operating-system error as one line: ``No space left on device (errno 28)``."""
+    return f"{exc.strerror} (errno {exc.errno})" if exc.strerror else str(exc)
 
 
 def _utcnow() -> str:
