@@ -1,0 +1,82 @@
+"""``seatwin bag repair``: a run killed with SIGKILL (each format) is rewritten into a bag the standard readers open."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+from recording_helpers import write_run
+from test_faults import _kill_after
+
+from seatwin.cli.main import run
+from seatwin.errors import InputError
+from seatwin.recording import open_bag
+from seatwin.recording.repair import repair_bag
+from seatwin.recording.storage import bag_path
+
+
+def _digest(folder: Path) -> dict[str, str]:
+    """Every file under ``folder`` (or the file) → its SHA-256: to show that nothing was changed."""
+    files = [folder] if folder.is_file() else sorted(p for p in folder.rglob("*") if p.is_file())
+    return {str(p): hashlib.sha256(p.read_bytes()).hexdigest() for p in files}
+
+
+def _killed_run(tmp_path: Path, fmt: str) -> Path:
+    run_dir = tmp_path / "killed"
+    _kill_after(run_dir, fmt, sweeps=12)
+    return run_dir
+
+
+def test_repair_a_killed_run(tmp_path: Path, fmt: str, standard_readers, capsys: pytest.CaptureFixture[str]) -> None:
+    killed = _killed_run(tmp_path, fmt)
+    with pytest.raises(Exception):  # noqa: B017, PT011 - what standard readers do with it: any refusal
+        standard_readers(bag_path(killed, fmt))
+    before = _digest(killed)
+    probe = tmp_path / "probe"  # seatwin's own reader, on a copy (opening a SQLite3 bag may roll back its journal)
+    shutil.copytree(killed, probe)
+    with open_bag(probe) as bag:
+        assert bag.recovered
+        expected = {t: i.count for t, i in bag.topics.items()}
+
+    assert run(["bag", "repair", str(killed)]) == 0
+    out_dir = tmp_path / "killed.repaired"
+    assert f"{fmt} bag repaired: {sum(expected.values())} messages" in capsys.readouterr().out
+    assert _digest(killed) == before  # the original untouched (a SQLite3 journal included)
+    assert standard_readers(bag_path(out_dir, fmt)) == sum(expected.values())
+    with open_bag(out_dir) as bag:
+        assert not bag.recovered and bag.complete is False  # finished bag; the run itself did not complete
+        assert {t: i.count for t, i in bag.topics.items()} == expected
+        assert len(list(bag.point_clouds("/lidar/points"))) == expected["/lidar/points"] >= 10
+    manifest = json.loads((out_dir / "manifest.json").read_text())
+    assert manifest["completed"] is False and manifest["repaired"]["messages"] == sum(expected.values())
+    assert manifest["topics"]["/lidar/points"] == {"type": "sensor_msgs/msg/PointCloud2", "count": expected["/lidar/points"]}
+
+
+def test_repair_in_place_and_refusals(tmp_path: Path, standard_readers) -> None:
+    killed = _killed_run(tmp_path, "sqlite3")
+    shutil.copytree(killed, tmp_path / "probe")
+    with open_bag(tmp_path / "probe") as bag:
+        n = sum(i.count for i in bag.topics.values())
+    other = tmp_path / "taken"
+    other.mkdir()
+    with pytest.raises(InputError, match="exists already"):
+        repair_bag(killed, other)
+    with pytest.raises(InputError, match="not both"):
+        repair_bag(killed, tmp_path / "x", in_place=True)
+    result = repair_bag(killed, in_place=True)
+    assert result.out == killed and result.messages == n and not result.was_finished
+    assert standard_readers(killed / "recording") == n
+    assert not list(tmp_path.glob(".killed*"))  # no staging or replaced copy left behind
+    assert json.loads((killed / "manifest.json").read_text())["repaired"]["messages"] == n
+
+
+def test_repair_a_bare_finished_bag(tmp_path: Path, standard_readers) -> None:
+    write_run(tmp_path / "run", "ros1", n_sweeps=3)
+    bag = tmp_path / "bare.bag"
+    shutil.copy(tmp_path / "run" / "recording.bag", bag)  # a bag outside any run
+    result = repair_bag(bag, tmp_path / "copy.bag")
+    assert result.was_finished and result.bag == tmp_path / "copy.bag"
+    assert standard_readers(tmp_path / "copy.bag") == standard_readers(bag)
