@@ -41,6 +41,8 @@ class _Deferral:
     depth = 0
     pending: int | None = None
     discard = 0
+    raised: int | None = None
+    """The last signal raised as :class:`Interrupted` (for :func:`interrupts_raise`'s caller)."""
 
 
 _state = _Deferral()
@@ -51,6 +53,7 @@ def _raise(signum: int, frame: FrameType | None) -> None:
         if not _state.discard and _state.pending is None:
             _state.pending = signum
         return
+    _state.raised = signum
     raise Interrupted(signum)
 
 
@@ -71,10 +74,18 @@ def _installed(handler: Callable[[int, FrameType | None], None]) -> Iterator[Non
             signal.signal(s, h)
 
 
-def interrupts_raise() -> contextlib.AbstractContextManager[None]:
+@contextlib.contextmanager
+def interrupts_raise() -> Iterator[Callable[[], int | None]]:
     """Inside: SIGINT and SIGTERM raise :class:`Interrupted` (deferred inside :func:`deferred_interrupts`);
-    the previous handlers are restored on leaving."""
-    return _installed(_raise)
+    the previous handlers are restored on leaving. Yields ``raised()``: the signal raised since entering,
+    if any (for a caller whose callee caught the exception, as typer does)."""
+    before, _state.raised = _state.raised, None
+    try:
+        with _installed(_raise):
+            yield lambda: _state.raised
+    finally:
+        if _state.raised is None:
+            _state.raised = before
 
 
 @contextlib.contextmanager
@@ -108,6 +119,7 @@ def deferred_interrupts(discard: bool = False) -> Iterator[None]:
             _state.pending = None
         if not _state.depth and _state.pending is not None:
             signum, _state.pending = _state.pending, None
+            _state.raised = signum
             raise Interrupted(signum)
 
 

@@ -125,3 +125,17 @@ def test_simulate_process_finishes_the_bag_on_sigterm(tmp_path: Path, fmt: str, 
         assert not bag.recovered
         assert {t: i.count for t, i in bag.topics.items()} == {t: v["count"] for t, v in manifest["topics"].items()}
     assert standard_readers(bag_path(run_dir, fmt)) == manifest["message_count"]
+
+
+def test_a_library_replacing_the_sigterm_handler_is_undone() -> None:
+    """``ray.init`` installs a SIGTERM handler that exits at once; the campaign engine puts seatwin's back."""
+    import sys
+
+    from seatwin.interrupts import sigterm_kept
+
+    with interrupts_raise():
+        with sigterm_kept():
+            signal.signal(signal.SIGTERM, lambda *_: sys.exit(signal.SIGTERM))  # what ray.init does
+        with pytest.raises(Interrupted, match="SIGTERM"):
+            os.kill(os.getpid(), signal.SIGTERM)
+            time.sleep(1)

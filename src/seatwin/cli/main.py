@@ -69,12 +69,12 @@ for _name in COMMAND_MODULES:
 
 def run(argv: Sequence[str] | None = None) -> int:
     """Run the CLI with ``argv``; return the exit status (used by ``main`` and by tests)."""
-    from seatwin.interrupts import interrupts_raise
+    from seatwin.interrupts import Interrupted, interrupts_raise
 
     try:
         # Without standalone mode, a command's typer.Exit(n) comes back as the return value, not an exception.
         # SIGTERM stops a verb as Ctrl-C does (a KeyboardInterrupt), never in the middle of a frame.
-        with interrupts_raise():
+        with interrupts_raise() as raised:
             code = app(args=list(argv) if argv is not None else None, prog_name="seatwin", standalone_mode=False)
     except ParameterError as exc:
         typer.echo(f"seatwin: error: {exc.render(flag_for(exc.param))}", err=True)
@@ -88,12 +88,19 @@ def run(argv: Sequence[str] | None = None) -> int:
         typer.echo("seatwin: aborted", err=True)
         return 130
     except KeyboardInterrupt as exc:
-        typer.echo(f"seatwin: interrupted{f' ({exc})' if str(exc) else ''}", err=True)
-        return 130
+        return _interrupted(exc)
     except typer.TyperException as exc:  # usage errors: unknown verb or option, bad value, missing option
         typer.echo(f"seatwin: error: {exc.format_message()}", err=True)
         return 2 if exc.exit_code in (1, 2) else exc.exit_code
+    if code == 130 and raised() is not None:  # typer returns a KeyboardInterrupt as 130, silently: say which signal
+        return _interrupted(Interrupted(raised()))  # type: ignore[arg-type]
     return code if isinstance(code, int) else 0
+
+
+def _interrupted(exc: KeyboardInterrupt) -> int:
+    """``seatwin: interrupted (Ctrl-C)`` or ``(SIGTERM)`` on stderr; status 130 either way."""
+    typer.echo(f"seatwin: interrupted ({exc or 'Ctrl-C'})", err=True)
+    return 130
 
 
 def main() -> None:

@@ -13,6 +13,7 @@ readable, and the manifest says ``completed: false`` with ``error: interrupted (
 from __future__ import annotations
 
 import heapq
+import signal
 import sys
 import threading
 import time as _time
@@ -38,6 +39,8 @@ class SimulationResult:
     frames: dict[str, int] = field(default_factory=dict)
     recording_s: float = 0.0
     """Wall time spent serialising and writing messages."""
+    interrupted_by: int | None = None
+    """The signal (SIGINT, SIGTERM) that stopped the run, if one did."""
 
     @property
     def realtime_factor(self) -> float:
@@ -154,6 +157,7 @@ def simulate(
         run_dir, fmt, topics=topics, sensors={s.name: s.parameters() for s in sensors}, **(writer_kwargs or {})
     )
     stepper = None
+    interrupted_by = None
     with interrupts_raise():
         try:
             stepper = Stepper(sensors, writer, t0, on_frame=on_frame)
@@ -161,6 +165,7 @@ def simulate(
                 stepper.advance_to(t1, advance, wall0)
             completed = True
         except KeyboardInterrupt as exc:
+            interrupted_by = getattr(exc, "signum", signal.SIGINT)
             with deferred_interrupts(discard=True):  # a second Ctrl-C does not cut the bag's finishing
                 writer.close(completed=False, error=f"interrupted ({exc or 'Ctrl-C'})")
         except BaseException as exc:
@@ -175,7 +180,7 @@ def simulate(
     done_t = stepper.done_t if stepper is not None else t0
     counts = stepper.counts if stepper is not None else {s.name: 0 for s in sensors}
     sim_s = (t1 - t0) if completed else max(0.0, done_t - t0)
-    return SimulationResult(Path(run_dir), completed, sim_s, wall, counts, rec_s)
+    return SimulationResult(Path(run_dir), completed, sim_s, wall, counts, rec_s, interrupted_by)
 
 
 class _progress:
