@@ -80,6 +80,30 @@ def test_record_stream_process(tmp_path, standard_readers):
     assert standard_readers(tmp_path / "r" / "recording") == 0
 
 
+@pytest.mark.slow
+def test_record_stream_process_finishes_what_it_received_on_sigterm(tmp_path, standard_readers):
+    import grpc
+
+    from seatwin.api.proto import navigation_pb2, navigation_pb2_grpc
+
+    proc, address = _start(["record-stream", "--port", "0", "--out", str(tmp_path / "r"), "--format", "mcap"])
+    try:
+        with grpc.insecure_channel(address) as channel:
+            nav = navigation_pb2_grpc.NavigationStub(channel)
+            for k in range(5):
+                msg = navigation_pb2.NavigationRequest(
+                    timeStamp=1.6e9 + 0.1 * k, position=navigation_pb2.Vec3(x=float(k)), vesselName="Finn"
+                )
+                assert nav.SendNavigationMessage(msg, timeout=30).success
+    finally:
+        proc.send_signal(signal.SIGTERM)
+        out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 0, err
+    m = json.loads((tmp_path / "r" / "manifest.json").read_text())
+    assert m["completed"] is True and m["topics"]["/ground_truth/Finn/pose"]["count"] == 5
+    assert standard_readers(tmp_path / "r" / "recording") == m["message_count"]
+
+
 def test_serve_refuses_a_bad_ownship(tmp_path, capsys):
     assert run(["serve", "--port", "0", "--out", str(tmp_path / "r"), "--ownship", "Nobody"]) == 2
     assert "--ownship" in capsys.readouterr().err

@@ -247,9 +247,13 @@ class _Servicer(sensorstreaming_pb2_grpc.SensorStreamingServicer, navigation_pb2
     def _call(self, fn: Callable[[Any], None], request: Any, context: Any) -> bool:
         import grpc
 
+        from seatwin.recording import RecordingError
+
         with self.rec.lock:
             try:
                 fn(request)
+            except RecordingError as exc:  # the disk, or the recording finished (after Ctrl-C/SIGTERM): not the request
+                context.abort(grpc.StatusCode.UNAVAILABLE, str(exc))
             except InputError as exc:
                 context.abort(grpc.StatusCode.INVALID_ARGUMENT, str(exc))
         return True
