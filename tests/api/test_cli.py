@@ -112,3 +112,11 @@ def test_serve_refuses_a_bad_ownship(tmp_path, capsys):
 def test_serve_refuses_a_bad_port(tmp_path, capsys):
     assert run(["serve", "--port", "99999", "--out", str(tmp_path / "r"), "--sensors", "none"]) == 2
     assert "--port" in capsys.readouterr().err and not (tmp_path / "r").exists()
+
+
+def test_serve_refuses_bad_limits(tmp_path, capsys):
+    assert run(["serve", "--port", "0", "--out", str(tmp_path / "r"), "--sensors", "none", "--max-step", "0"]) == 2
+    assert capsys.readouterr().err.startswith("seatwin: error: --max-step")
+    assert run(["serve", "--port", "0", "--out", str(tmp_path / "s"), "--sensors", "none", "--max-message-bytes", "10"]) == 2
+    assert "--max-message-bytes" in capsys.readouterr().err
+    assert not (tmp_path / "r").exists() and not (tmp_path / "s").exists()  # refused before anything was made
