@@ -46,11 +46,14 @@ def _finished_records(jobs: Path) -> list[dict]:
 
 
 @pytest.mark.slow
-def test_campaign_stops_on_sigterm_as_on_ctrl_c(tmp_path: Path) -> None:
+@pytest.mark.parametrize("workers", ["0", "1"])  # in this process; on a local Ray (whose ray.init replaces the SIGTERM handler)
+def test_campaign_stops_on_sigterm_as_on_ctrl_c(tmp_path: Path, workers: str) -> None:
     spec = tmp_path / "campaign.yaml"
     spec.write_text(TINY)
     out = tmp_path / "out"
-    done = _sigterm_after_first_job(["campaign", str(spec), "--out", str(out), "--workers", "0", "--no-progress"], out / "jobs")
+    done = _sigterm_after_first_job(
+        ["campaign", str(spec), "--out", str(out), "--workers", workers, "--no-progress"], out / "jobs"
+    )
     assert done.returncode == 130, done.stderr
     assert done.stderr.strip().splitlines()[-1] == "seatwin: interrupted (SIGTERM)" and "Traceback" not in done.stderr
     n = len(_finished_records(out / "jobs"))
