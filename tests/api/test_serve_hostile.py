@@ -160,3 +160,17 @@ def test_an_interrupt_between_steps_finishes_the_run(tmp_path):
     finally:
         res = handle.stop()
     assert res.completed and res.frames == {"ground_truth": 4} and handle.servicer.steps == 5
+
+
+def test_a_client_outliving_its_connections_is_served_on(tmp_path):
+    """The connection age that bounds a stalled body makes ordinary clients reconnect, transparently."""
+    handle = serve(tmp_path / "r", port=0, sensors=(), connection_age_s=0.3, connection_grace_s=1.0)
+    try:
+        with SimulationClient(handle.address) as c:
+            c.set_start_time(1.6e9)
+            for k in range(15):  # over several connection ages
+                assert c.step(OK, k / 10)
+                time.sleep(0.15)
+    finally:
+        res = handle.stop()
+    assert res.completed and handle.servicer.steps == 15 and handle.servicer.rejected == 0
