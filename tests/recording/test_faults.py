@@ -190,3 +190,22 @@ def test_simulate_on_a_full_disk_is_one_line_and_exit_2(
     manifest = json.loads((tmp_path / "r" / "manifest.json").read_text())
     assert manifest["completed"] is False and "No space left on device" in manifest["error"]
     assert not (tmp_path / "r" / "manifest.json.part").exists()
+
+
+@pytest.mark.parametrize("framed", [True, False])
+def test_a_frame_reaches_the_disk_whole(tmp_path: Path, framed: bool) -> None:
+    """A flush falling due inside ``writer.frame()`` waits for its end: the bag's flushed prefix (what a
+    SIGKILL leaves) ends at a frame boundary."""
+    import contextlib
+
+    w = RecordingWriter(tmp_path / "run", "sqlite3", flush_interval_s=0.05, flush_wall_s=1e9, manifest_wall_s=0.0)
+    flushed_at: list[int] = []
+    flush = w.storage.flush
+    w.storage.flush = lambda: (flushed_at.append(sum(w.counts.values())), flush())[1]  # type: ignore[method-assign]
+    for k in range(10):
+        with w.frame() if framed else contextlib.nullcontext():
+            for m in range(9):
+                w.write_sweep(f"/cam{m}/points", "cam", T0 + 0.1 * k, **sweep(k, n=10))
+    w.close()
+    assert len(flushed_at) >= 8
+    assert all(n % 9 == 0 for n in flushed_at) == framed, flushed_at

@@ -24,7 +24,7 @@ import functools
 import os
 import shutil
 import time as _time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from types import TracebackType
 from typing import Any, TypeVar
@@ -136,6 +136,9 @@ class RecordingWriter:
         """Seconds spent in this writer's calls (``total_s``; recording_share = total_s / wall time),
         of which serialising and handing bytes to the bag storage."""
         self._depth = 0
+        self._frame_depth = 0
+        self._flush_due: float | None = None
+        """A flush postponed to the end of the :meth:`frame` block (the time it became due)."""
 
         for existing in (self.bag, self.run_dir / MANIFEST_NAME):
             if existing.exists():
@@ -226,12 +229,29 @@ class RecordingWriter:
             if self._last_flush is None:
                 self._last_flush = t
             elif t - self._last_flush >= self.flush_interval_s or t0 - self._last_flush_wall >= self.flush_wall_s:
-                self.flush()
-                self._last_flush, self._last_flush_wall = t, t0
+                if self._frame_depth:
+                    self._flush_due = t
+                else:
+                    self.flush()
+                    self._last_flush, self._last_flush_wall = t, t0
         except OSError as exc:
             self._fail(exc)
         finally:
             self.timing["write_s"] += _time.perf_counter() - t0
+
+    @contextlib.contextmanager
+    def frame(self) -> Iterator[None]:
+        """A block whose messages (one frame's) reach the disk together: a flush that falls due inside it
+        waits for its end, so a run killed outright (SIGKILL) leaves a SQLite3 bag ending at a frame boundary."""
+        self._frame_depth += 1
+        try:
+            yield
+        finally:
+            self._frame_depth -= 1
+            if not self._frame_depth and self._flush_due is not None and not self._closed:
+                t, self._flush_due = self._flush_due, None
+                self.flush()
+                self._last_flush, self._last_flush_wall = t, _time.perf_counter()
 
     @_timed
     def flush(self) -> None:

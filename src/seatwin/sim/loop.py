@@ -118,7 +118,7 @@ class Stepper:
             t, i, k = heapq.heappop(events)
             sensor = self.sensors[i]
             data = sensor.capture(t, k)
-            with deferred_interrupts():
+            with deferred_interrupts(), self.writer.frame():
                 sensor.record(self.writer, t, data)
                 self._next[i] = k + 1
                 self.counts[sensor.name] += 1
