@@ -8,6 +8,8 @@ import shutil
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 from recording_helpers import write_run
 from test_faults import _kill_after
 
@@ -80,3 +82,36 @@ def test_repair_a_bare_finished_bag(tmp_path: Path, standard_readers) -> None:
     result = repair_bag(bag, tmp_path / "copy.bag")
     assert result.was_finished and result.bag == tmp_path / "copy.bag"
     assert standard_readers(tmp_path / "copy.bag") == standard_readers(bag)
+
+
+@pytest.fixture(scope="module")
+def finished_bags(tmp_path_factory: pytest.TempPathFactory) -> dict[str, bytes]:
+    root = tmp_path_factory.mktemp("finished")
+    out = {}
+    for fmt in ("mcap", "ros1"):
+        write_run(root / fmt, fmt, n_sweeps=12, flush_interval_s=0.2)
+        out[fmt] = (root / fmt / ("recording.bag" if fmt == "ros1" else "recording/recording.mcap")).read_bytes()
+    return out
+
+
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(fmt=st.sampled_from(["mcap", "ros1"]), fraction=st.floats(0.0, 1.0))
+def test_a_bag_cut_at_any_byte_repairs_into_what_the_scanner_reads(
+    tmp_path_factory: pytest.TempPathFactory, finished_bags: dict[str, bytes], standard_readers, fmt: str, fraction: float
+) -> None:
+    tmp = tmp_path_factory.mktemp("cut")
+    data = finished_bags[fmt]
+    cut = tmp / ("cut.bag" if fmt == "ros1" else "cut.mcap")
+    before = data[: max(int(len(data) * fraction), 64)]
+    cut.write_bytes(before)
+    try:
+        with open_bag(cut) as bag:
+            expected = {t: i.count for t, i in bag.topics.items() if i.count}
+    except InputError:
+        with pytest.raises(InputError):  # what seatwin cannot read, it does not "repair" either
+            repair_bag(cut, tmp / "fixed")
+        return
+    result = repair_bag(cut, tmp / ("fixed.bag" if fmt == "ros1" else "fixed"))
+    assert {t: n for t, n in result.topics.items() if n} == expected
+    assert standard_readers(result.bag) == sum(expected.values())
+    assert cut.read_bytes() == before  # the input untouched
