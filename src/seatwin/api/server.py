@@ -100,9 +100,11 @@ class SimulationServicer(gemini_osp_pb2_grpc.SimulationServicer):
         self.lock = threading.Lock()
         self.steps = 0
         self.rejected = 0
+        self._counting = threading.Lock()
 
     def _refuse(self, context: grpc.ServicerContext, code: grpc.StatusCode, message: str) -> None:
-        self.rejected += 1
+        with self._counting:
+            self.rejected += 1
         context.abort(code, message)
 
     def _call(self, fn: Callable[[], Any], context: grpc.ServicerContext) -> None:
@@ -129,8 +131,12 @@ class SimulationServicer(gemini_osp_pb2_grpc.SimulationServicer):
                 f"VesselPoses: expected {expected} poses ({', '.join(self.sim.settings.vessels)}), got {n}",
             )
         poses = [(p.north, p.east, p.heading) for p in request.VesselPoses]
-        self._call(lambda: self.sim.step(poses, request.time, request.stepSize, interrupt=self.interrupt), context)
-        self.steps += 1
+
+        def step() -> None:  # on the simulation thread, one at a time
+            self.sim.step(poses, request.time, request.stepSize, interrupt=self.interrupt)
+            self.steps += 1
+
+        self._call(step, context)
         return _STEP_OK
 
     def SetStartTime(self, request: Any, context: grpc.ServicerContext) -> Any:  # noqa: N802 - Gemini's name
