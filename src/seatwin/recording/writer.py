@@ -24,7 +24,7 @@ import functools
 import os
 import shutil
 import time as _time
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from types import TracebackType
 from typing import Any, TypeVar
@@ -137,6 +137,7 @@ class RecordingWriter:
         of which serialising and handing bytes to the bag storage."""
         self._depth = 0
         self._frame_depth = 0
+        self._frame_block = _FrameBlock(self._begin_frame, self._end_frame)
         self._flush_due: float | None = None
         """A flush postponed to the end of the :meth:`frame` block (the time it became due)."""
 
@@ -239,19 +240,20 @@ class RecordingWriter:
         finally:
             self.timing["write_s"] += _time.perf_counter() - t0
 
-    @contextlib.contextmanager
-    def frame(self) -> Iterator[None]:
+    def frame(self) -> _FrameBlock:
         """A block whose messages (one frame's) reach the disk together: a flush that falls due inside it
         waits for its end, so a run killed outright (SIGKILL) leaves a SQLite3 bag ending at a frame boundary."""
+        return self._frame_block
+
+    def _begin_frame(self) -> None:
         self._frame_depth += 1
-        try:
-            yield
-        finally:
-            self._frame_depth -= 1
-            if not self._frame_depth and self._flush_due is not None and not self._closed:
-                t, self._flush_due = self._flush_due, None
-                self.flush()
-                self._last_flush, self._last_flush_wall = t, _time.perf_counter()
+
+    def _end_frame(self) -> None:
+        self._frame_depth -= 1
+        if not self._frame_depth and self._flush_due is not None and not self._closed:
+            t, self._flush_due = self._flush_due, None
+            self.flush()
+            self._last_flush, self._last_flush_wall = t, _time.perf_counter()
 
     @_timed
     def flush(self) -> None:
@@ -490,6 +492,21 @@ class RecordingWriter:
             self.close()
         elif not self._closed:
             self.close(completed=False, error=f"{type(exc).__name__}: {exc}")
+
+
+class _FrameBlock:
+    """:meth:`RecordingWriter.frame`'s context manager (one per writer, re-entrant; a class: entered once a frame)."""
+
+    __slots__ = ("begin", "end")
+
+    def __init__(self, begin: Callable[[], None], end: Callable[[], None]) -> None:
+        self.begin, self.end = begin, end
+
+    def __enter__(self) -> None:
+        self.begin()
+
+    def __exit__(self, *exc: object) -> None:
+        self.end()
 
 
 def open_recording(run_dir: str | os.PathLike[str], fmt: str = "mcap", **kwargs: Any) -> RecordingWriter:
