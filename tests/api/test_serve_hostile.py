@@ -174,3 +174,24 @@ def test_a_client_outliving_its_connections_is_served_on(tmp_path):
     finally:
         res = handle.stop()
     assert res.completed and handle.servicer.steps == 15 and handle.servicer.rejected == 0
+
+
+def test_a_failing_frame_is_answered_internal_and_the_bag_still_finished(tmp_path):
+    def on_frame(sensor, t, k, data):  # the ground-truth frames from 0.5 s on fail
+        if k >= 5:
+            raise RuntimeError(f"frame {k} failed")
+
+    handle = serve(tmp_path / "r", port=0, sensors=(), on_frame=on_frame)
+    try:
+        with SimulationClient(handle.address) as c:
+            c.set_start_time(1.6e9)
+            for k in range(7):  # ground truth runs up to the step before: frames 0..4
+                assert c.step(OK, k / 10)
+            assert "frame 5 failed" in _refused(lambda: c.step(OK, 0.7), grpc.StatusCode.INTERNAL)
+    finally:
+        res = handle.stop()  # the frames still due fail again: the bag is finished all the same, nothing raised
+    assert not res.completed
+    manifest = json.loads((tmp_path / "r" / "manifest.json").read_text())
+    assert manifest["completed"] is False and "RuntimeError: frame 6 failed" in manifest["error"]
+    with open_bag(tmp_path / "r") as bag:
+        assert not bag.recovered and bag.topics["/tf"].count == 7  # frames 0..6, each recorded before its hook failed

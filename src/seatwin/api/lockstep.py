@@ -336,7 +336,9 @@ class LockstepSimulation:
 
     def close(self, completed: bool = True, error: str | None = None) -> SimulationResult:
         """Run the frames still due (each with its whole span received; none after an interrupted step),
-        save the received scenario, finish the bag (``completed: false`` with the reason after an interrupted step)."""
+        save the received scenario, finish the bag (``completed: false`` with the reason after an interrupted
+        step). A frame failing here (an error, not a signal) ends the run there: the bag is finished with
+        ``completed: false`` and the error, and the result says incomplete (nothing is raised)."""
         if self.interrupted and error is None:
             completed, error = False, f"interrupted: {self.interrupted}"
         if not self.closed:
@@ -348,6 +350,8 @@ class LockstepSimulation:
                     last = self.tracks.sample_time(-1)
                     self._advance([last - d.span_s + (1e-5 if d.span_s > 0 else 0.0) for d in self._due])
                     self._save_scenario()
+            except Exception as exc:  # noqa: BLE001 - the bag is finished with the error, whatever failed
+                completed, error = False, f"the frames still due failed: {type(exc).__name__}: {exc}"
             except BaseException as exc:
                 self.writer.close(completed=False, error=f"{type(exc).__name__}: {exc}")
                 raise

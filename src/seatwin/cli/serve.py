@@ -97,7 +97,7 @@ def register(app: typer.Typer) -> None:
                 result = handle.stop()
                 if streamer is not None:
                     streamer.close()
-        state = "completed" if result.completed else "INCOMPLETE (a step was interrupted)"
+        state = "completed" if result.completed else "INCOMPLETE (a step was interrupted or failed: the manifest says why)"
         typer.echo(
             f"{state}: {handle.servicer.steps} steps ({handle.servicer.rejected} refused), "
             f"{result.simulated_s:.1f} s simulated; frames {result.frames}; recording in {result.run_dir}"
