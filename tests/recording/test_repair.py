@@ -115,3 +115,23 @@ def test_a_bag_cut_at_any_byte_repairs_into_what_the_scanner_reads(
     assert {t: n for t, n in result.topics.items() if n} == expected
     assert standard_readers(result.bag) == sum(expected.values())
     assert cut.read_bytes() == before  # the input untouched
+
+
+def test_cli_out_in_place_and_refusals(tmp_path: Path, standard_readers, capsys: pytest.CaptureFixture[str]) -> None:
+    write_run(tmp_path / "run", "sqlite3", n_sweeps=3)
+    n = standard_readers(tmp_path / "run" / "recording")
+    assert run(["bag", "repair", str(tmp_path / "run"), "--out", str(tmp_path / "fixed")]) == 0
+    assert "sqlite3 bag was finished already; rewritten" in capsys.readouterr().out
+    assert standard_readers(tmp_path / "fixed" / "recording") == n
+    assert run(["bag", "repair", str(tmp_path / "run"), "--out", str(tmp_path / "fixed")]) == 2
+    assert (
+        capsys.readouterr().err
+        == f"seatwin: error: {tmp_path / 'fixed'}: exists already; choose a new output (or repair --in-place)\n"
+    )
+    assert run(["bag", "repair", str(tmp_path / "run" / "recording"), "--in-place"]) == 0  # the run it belongs to
+    assert standard_readers(tmp_path / "run" / "recording") == n and "repaired" in json.loads(
+        (tmp_path / "run" / "manifest.json").read_text()
+    )
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["fixed", "run"]
+    assert run(["bag", "repair", str(tmp_path / "nothing")]) == 2
+    assert "no such file or directory" in capsys.readouterr().err
