@@ -104,6 +104,7 @@ def _stalled_call(address: str, release: threading.Event) -> tuple[threading.Thr
     return thread, outcome
 
 
+@pytest.mark.slow
 def test_a_body_that_never_comes_stalls_no_one_and_is_given_up(tmp_path):
     handle = serve(tmp_path / "r", port=0, sensors=(), workers=2, connection_age_s=2.0, connection_grace_s=1.0)
     release = threading.Event()
@@ -162,6 +163,7 @@ def test_an_interrupt_between_steps_finishes_the_run(tmp_path):
     assert res.completed and res.frames == {"ground_truth": 4} and handle.servicer.steps == 5
 
 
+@pytest.mark.slow
 def test_a_client_outliving_its_connections_is_served_on(tmp_path):
     """The connection age that bounds a stalled body makes ordinary clients reconnect, transparently."""
     handle = serve(tmp_path / "r", port=0, sensors=(), connection_age_s=0.3, connection_grace_s=1.0)
