@@ -43,3 +43,26 @@ def camera_rig() -> tuple:
     cfg = CameraConfig()
     info = camera_info_fields(cfg)
     return sc, scene, cfg, info, SceneRenderer(scene, info.k, cfg.width, cfg.height, exclude=[sc.ownship.name])
+
+
+def _standard_count(bag: Path) -> int:
+    """Messages in ``bag`` (a rosbag2 folder or a ROS 1 .bag) as rosbags' ``AnyReader`` reads them; for MCAP
+    the ``mcap`` reader must find the same count in the file's summary (a finished file)."""
+    from rosbags.highlevel import AnyReader
+
+    with AnyReader([Path(bag)]) as reader:
+        n = sum(1 for _ in reader.messages())
+    for mcap_file in Path(bag).glob("*.mcap") if Path(bag).is_dir() else ():
+        from mcap.reader import make_reader
+
+        with mcap_file.open("rb") as f:
+            summary = make_reader(f).get_summary()
+        assert summary is not None and summary.statistics is not None, f"{mcap_file}: no summary"
+        assert summary.statistics.message_count == n
+    return n
+
+
+@pytest.fixture
+def standard_readers():
+    """``count(bag) -> int``: open a bag with the standard readers (rosbags ``AnyReader``; ``mcap``'s summary)."""
+    return _standard_count

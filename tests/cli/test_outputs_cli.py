@@ -196,7 +196,7 @@ def test_a_refused_radar_simulation_writes_nothing(tmp_path, capsys):
         (PermissionError(errno.EACCES, "Permission denied"), "seatwin: error: Permission denied"),
         (RecursionError("maximum recursion depth exceeded"), "nested too deeply"),
         (MemoryError(), "out of memory"),
-        (RecordingError("run/recording: recording stopped: OSError: [Errno 28] No space left on device"), "No space left"),
+        (RecordingError("run/recording", "recording stopped: OSError: [Errno 28] No space left on device"), "No space left"),
         (OverflowError("int too large to convert to float"), "too large"),
     ],
 )

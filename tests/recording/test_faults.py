@@ -138,15 +138,15 @@ def test_a_manifest_is_finished_with_the_error_even_on_a_full_disk(tmp_path: Pat
     from seatwin.recording.manifest import write_manifest
 
     write_manifest(tmp_path, {"completed": False, "error": None, "notes": ["x" * 200]})
-    real = Path.write_bytes
+    real = Path.write_text
 
-    def full(self: Path, data: bytes) -> int:
+    def full(self: Path, data: str, *args, **kwargs) -> int:
         if self.name.endswith(".part"):
-            real(self, b"")
+            real(self, "")
             raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(self))
-        return real(self, data)
+        return real(self, data, *args, **kwargs)
 
-    monkeypatch.setattr(Path, "write_bytes", full)
+    monkeypatch.setattr(Path, "write_text", full)
     write_manifest(tmp_path, {"completed": False, "error": "OSError: [Errno 28] No space left on device"})
     assert json.loads((tmp_path / "manifest.json").read_text())["error"].endswith("No space left on device")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["manifest.json"]
@@ -154,3 +154,81 @@ def test_a_manifest_is_finished_with_the_error_even_on_a_full_disk(tmp_path: Pat
     with pytest.raises(OSError, match="No space left"):  # more than its blocks hold: refused, the old one intact
         write_manifest(tmp_path, {"notes": ["y" * 20_000]})
     assert (tmp_path / "manifest.json").read_text() == before and sorted(p.name for p in tmp_path.iterdir()) == ["manifest.json"]
+
+
+def _disk_full_from(monkeypatch: pytest.MonkeyPatch, storage_cls: type, after: int) -> None:
+    """From the ``after``-th call on, the storage's writes and every new file (the manifest's ``.part``) fail
+    with ENOSPC, as on a full disk (a new file is left empty, as the kernel leaves it)."""
+    import pathlib
+
+    calls = [0]
+    full = [False]
+    write_many, write_text = storage_cls.write_many, pathlib.Path.write_text
+
+    def failing_write_many(self, items, timestamp):
+        calls[0] += 1
+        if calls[0] >= after:
+            full[0] = True
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        return write_many(self, items, timestamp)
+
+    def failing_write_text(self, *args, **kwargs):
+        if full[0] and self.name.endswith(".part"):
+            self.touch()
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(self))
+        return write_text(self, *args, **kwargs)
+
+    monkeypatch.setattr(storage_cls, "write_many", failing_write_many)
+    monkeypatch.setattr(pathlib.Path, "write_text", failing_write_text)
+
+
+def test_full_disk_finishes_the_manifest_with_the_error(tmp_path: Path, fmt: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    from seatwin.recording.storage import STORAGES
+
+    w = RecordingWriter(tmp_path / "run", fmt, flush_interval_s=0.2, manifest_wall_s=0.0)
+    _disk_full_from(monkeypatch, STORAGES[fmt], after=20)
+    with pytest.raises(RecordingError, match="No space left on device") as e:
+        for k in range(100):
+            w.write_sweep("/lidar/points", "lidar", T0 + 0.1 * k, **sweep(k, n=100))
+    assert str(e.value).startswith(str(w.bag))
+    manifest = json.loads((tmp_path / "run" / "manifest.json").read_text())
+    assert manifest["completed"] is False and "No space left on device" in manifest["error"]
+    assert manifest["finished_utc"] is not None
+    assert not (tmp_path / "run" / "manifest.json.part").exists()
+    monkeypatch.undo()
+    with open_bag(tmp_path / "run") as rec:
+        assert rec.complete is False and len(list(rec.point_clouds())) >= 10
+
+
+def test_simulate_on_a_full_disk_is_one_line_and_exit_2(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from seatwin.recording.storage import McapStorage
+
+    _disk_full_from(monkeypatch, McapStorage, after=50)
+    code = run(["simulate", "ferry_crossing", "--out", str(tmp_path / "r"), "--sensors", "lidar", "--duration", "10", "-q"])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1 and "No space left on device" in err and "Traceback" not in err
+    assert err.startswith(f"seatwin: error: {tmp_path / 'r' / 'recording'}: recording stopped")
+    manifest = json.loads((tmp_path / "r" / "manifest.json").read_text())
+    assert manifest["completed"] is False and "No space left on device" in manifest["error"]
+    assert not (tmp_path / "r" / "manifest.json.part").exists()
+
+
+@pytest.mark.parametrize("framed", [True, False])
+def test_a_frame_reaches_the_disk_whole(tmp_path: Path, framed: bool) -> None:
+    """A flush falling due inside ``writer.frame()`` waits for its end: the bag's flushed prefix (what a
+    SIGKILL leaves) ends at a frame boundary."""
+    import contextlib
+
+    w = RecordingWriter(tmp_path / "run", "sqlite3", flush_interval_s=0.05, flush_wall_s=1e9, manifest_wall_s=0.0)
+    flushed_at: list[int] = []
+    flush = w.storage.flush
+    w.storage.flush = lambda: (flushed_at.append(sum(w.counts.values())), flush())[1]  # type: ignore[method-assign]
+    for k in range(10):
+        with w.frame() if framed else contextlib.nullcontext():
+            for m in range(9):
+                w.write_sweep(f"/cam{m}/points", "cam", T0 + 0.1 * k, **sweep(k, n=10))
+    w.close()
+    assert len(flushed_at) >= 8
+    assert all(n % 9 == 0 for n in flushed_at) == framed, flushed_at

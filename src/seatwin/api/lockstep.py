@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import datetime as dt
 import math
+import threading
 import time as _time
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -45,11 +46,18 @@ from seatwin.recording.manifest import MANIFEST_NAME
 from seatwin.scenario import Role, Scenario, Trajectory, Vessel
 from seatwin.scenario.defaults import NOMINAL_DIMENSIONS, OWNSHIP_NAME, RAVNKLOA, TARGETS_BY_COLUMN
 from seatwin.settings import Settings
-from seatwin.sim.loop import SimulationResult, Stepper
+from seatwin.sim.loop import SimulationResult, StepInterrupted, Stepper
 from seatwin.sim.sensors import GroundTruthSensor, LidarSensor, SimSensor
 
 DEFAULT_VESSELS: tuple[str, ...] = (TARGETS_BY_COLUMN[1][0], TARGETS_BY_COLUMN[2][0], OWNSHIP_NAME)
 """The Gemini CSV's V1, V2, V3 order: Havfruen, Finn, milliAmpere (the ownship)."""
+
+MAX_TIME_S = 1e6
+"""The largest ``StepRequest.time`` taken: a float32 resolves 0.06 s there (a POSIX time sent by
+mistake, 1.6e9, would resolve 128 s)."""
+
+MIN_MAX_STEP_S = 1.0
+"""Without ``max_step_s``, a step may advance max(10 × its ``stepSize``, this) seconds."""
 
 TIME_QUANTUM_S = 1e-3
 """``StepRequest.time`` (a float32 of seconds since the start) is rounded to this: float32 resolves
@@ -74,6 +82,12 @@ class LockstepSettings(Settings):
     fmt: Literal["mcap", "sqlite3", "ros1"] = Field("mcap", description="Bag format.")
     radar_spokes: bool = Field(False, description="Keep each radar rotation's raw spokes (for streaming).")
     ground_truth_rate_hz: float = Field(10.0, gt=0, description="Rate of the ground-truth topics [Hz].")
+    max_step_s: float | None = Field(
+        None,
+        gt=0,
+        le=3600,
+        description="The most seconds one step may advance past the last (None: max(10 × the request's stepSize, 1 s)).",
+    )
     harbour: str = Field(
         "default",
         description="Harbour the steps' poses are in: 'default', 'ravnkloa' (the Gemini scenarios' frame), "
@@ -191,6 +205,8 @@ class LockstepSimulation:
         self.start: float | None = None
         self.stepper: Stepper | None = None
         self.closed = False
+        self.interrupted: str | None = None
+        """Why a step stopped before its frames were all run (then no step is taken any more)."""
         self._wall0 = _time.perf_counter()
 
     def _sensors(self) -> list[SimSensor]:
@@ -246,11 +262,23 @@ class LockstepSimulation:
         self.start = parse_start_time(text)
         return self.start
 
-    def step(self, poses: Sequence[Sequence[float]], time: float) -> int:
+    def max_step(self, step_size: float) -> float:
+        """The most seconds a step with ``stepSize`` = ``step_size`` may advance past the last."""
+        s = self.settings.max_step_s
+        return float(s) if s is not None else max(10.0 * step_size, MIN_MAX_STEP_S)
+
+    def step(
+        self, poses: Sequence[Sequence[float]], time: float, step_size: float = 0.0, interrupt: threading.Event | None = None
+    ) -> int:
         """Pose the vessels (north, east [m], heading [° clockwise from north], in ``settings.vessels``
         order) at ``time`` seconds since the start (< 0: history before the start, no frames); run the
-        frames now due; return how many ran."""
-        if self.closed:
+        frames now due; return how many ran.
+
+        Everything is checked before anything changes (a refused step changes nothing): the poses,
+        ``time`` (finite, within ±``MAX_TIME_S``, after the last step by at most :meth:`max_step`)
+        and ``step_size`` (finite, ≥ 0). ``interrupt`` set stops the frames before the next one
+        (:class:`~seatwin.sim.loop.StepInterrupted`); the run then ends at :meth:`close` without more frames."""
+        if self.closed or self.interrupted:
             raise ParameterError("time", "the simulation is closed")
         if self.start is None:
             raise ParameterError("time", "DoStep before SetStartTime: set the start time first")
@@ -263,12 +291,26 @@ class LockstepSimulation:
             raise ParameterError("VesselPoses", f"pose {i} ({self.settings.vessels[i]}) is not finite: {p[i].tolist()}")
         if not math.isfinite(time):
             raise ParameterError("time", f"expected a finite time, got {time!r}")
+        if not abs(time) <= MAX_TIME_S:
+            raise ParameterError(
+                "time", f"expected seconds since the start time (|time| ≤ {MAX_TIME_S:g}), got {time!r}: a POSIX time?"
+            )
+        if not (math.isfinite(step_size) and step_size >= 0):
+            raise ParameterError("stepSize", f"expected a finite step size ≥ 0, got {step_size!r}")
         rel = round(float(time) / TIME_QUANTUM_S) * TIME_QUANTUM_S
         t = self.start + rel
         tracks = self.tracks
-        if tracks.n and not t > tracks.sample_time(-1):
-            last = tracks.sample_time(-1) - self.start
-            raise ParameterError("time", f"time must increase: got {time!r} s after a step at {last!r} s")
+        if tracks.n:
+            last = tracks.sample_time(-1)
+            if not t > last:
+                raise ParameterError("time", f"time must increase: got {time!r} s after a step at {last - self.start!r} s")
+            limit = self.max_step(step_size)
+            if t - last > limit + TIME_QUANTUM_S / 2:
+                raise ParameterError(
+                    "time",
+                    f"a step may advance at most {limit:g} s (max_step; stepSize {step_size:g}): got {time!r} s "
+                    f"after a step at {last - self.start!r} s",
+                )
         tracks.append(t, p[:, 0], p[:, 1], np.deg2rad(p[:, 2]))
         if self.stepper is None and rel >= 0:
             hook = self.on_frame
@@ -277,25 +319,39 @@ class LockstepSimulation:
         if self.stepper is None or tracks.n < 2:
             return 0
         prev = tracks.sample_time(-2)
-        return self._advance([prev if isinstance(d.sensor, GroundTruthSensor) else t - d.span_s for d in self._due])
+        limits = [prev if isinstance(d.sensor, GroundTruthSensor) else t - d.span_s for d in self._due]
+        try:
+            return self._advance(limits, interrupt)
+        except StepInterrupted as exc:
+            self.interrupted = f"the step at {rel:g} s was {exc}"
+            raise
 
-    def _advance(self, limits: Sequence[float]) -> int:
+    def _advance(self, limits: Sequence[float], interrupt: threading.Event | None = None) -> int:
         """Run every sensor's frames before its new limit (the stepper's horizon: the latest limit)."""
         # Every frame of a scene sensor before its previous limit has run: the scene needs the samples from there on.
         self._scene_from = min((d.limit for d in self._due if d.before_capture is not None), default=math.inf)
         for d, limit in zip(self._due, limits, strict=True):
             d.limit = limit
-        return self.stepper.advance_to(max(limits))  # type: ignore[union-attr]
+        return self.stepper.advance_to(max(limits), interrupt=interrupt)  # type: ignore[union-attr]
 
     def close(self, completed: bool = True, error: str | None = None) -> SimulationResult:
-        """Run the frames still due (each with its whole span received), save the received scenario, finish the bag."""
+        """Run the frames still due (each with its whole span received; none after an interrupted step),
+        save the received scenario, finish the bag (``completed: false`` with the reason after an interrupted
+        step). A frame failing here (an error, not a signal) ends the run there: the bag is finished with
+        ``completed: false`` and the error, and the result says incomplete (nothing is raised)."""
+        if self.interrupted and error is None:
+            completed, error = False, f"interrupted: {self.interrupted}"
         if not self.closed:
             self.closed = True
             try:
+                if self.interrupted and self.tracks.n >= 2:
+                    self._save_scenario()
                 if completed and self.stepper is not None and self.tracks.n >= 2:
                     last = self.tracks.sample_time(-1)
                     self._advance([last - d.span_s + (1e-5 if d.span_s > 0 else 0.0) for d in self._due])
                     self._save_scenario()
+            except Exception as exc:  # noqa: BLE001 - the bag is finished with the error, whatever failed
+                completed, error = False, f"the frames still due failed: {type(exc).__name__}: {exc}"
             except BaseException as exc:
                 self.writer.close(completed=False, error=f"{type(exc).__name__}: {exc}")
                 raise

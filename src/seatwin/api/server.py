@@ -2,13 +2,22 @@
 
 :func:`serve` starts a gRPC server whose ``DoStep``/``SetStartTime`` drive a
 :class:`~seatwin.api.lockstep.LockstepSimulation` (the one loop, recording as ``seatwin simulate``
-does). Calls are handled one at a time, and ``DoStep`` answers only when the frames it made due are
-recorded (lock-step). Every call runs on the server's one worker thread, where the simulation is
-built and closed too (a camera's EGL context works only on the thread that created it; each thread
-gets its own, :func:`seatwin.render.context.create_context`). A bad request (NaN or infinite pose,
-wrong pose count, time going backwards, ``DoStep`` before ``SetStartTime``) is answered with status
-``INVALID_ARGUMENT`` and a message; the server keeps serving. :meth:`ServerHandle.stop` finishes
-the bag (manifest ``completed: true``).
+does), and ``DoStep`` answers only when the frames it made due are recorded (lock-step).
+
+Concurrency: several gRPC worker threads take calls, so a client that is slow to send (or never
+sends) its request body holds one of them, not the server; the calls are applied one at a time in
+the order they take the servicer's lock, each on the one simulation thread, where the simulation is
+built and closed too (a camera's EGL context works only on the thread that created it). A
+connection lives at most ``connection_age_s`` (gRPC's ``max_connection_age``: the client is told to
+reconnect, transparently for gRPC clients), plus a grace for the call in flight: so a request body
+that never comes is given up after that time.
+
+A bad request (NaN or infinite pose, wrong pose count, time going backwards or jumping more than
+``max_step_s``, ``DoStep`` before ``SetStartTime``, a message over ``max_message_bytes``) is answered
+with status ``INVALID_ARGUMENT`` (``RESOURCE_EXHAUSTED`` for the size) and a message, and changes
+nothing; the server keeps serving. Once ``interrupt`` is set (Ctrl-C/SIGTERM) a step in progress
+stops before its next frame and new steps are refused (``UNAVAILABLE``). :meth:`ServerHandle.stop`
+finishes the bag (manifest ``completed: true``, or ``false`` if a step was interrupted).
 """
 
 from __future__ import annotations
@@ -25,19 +34,54 @@ import grpc
 from seatwin.api.lockstep import LockstepSettings, LockstepSimulation
 from seatwin.api.proto import gemini_osp_pb2, gemini_osp_pb2_grpc
 from seatwin.errors import InputError, ParameterError
-from seatwin.sim.loop import SimulationResult
+from seatwin.recording import RecordingError
+from seatwin.sim.loop import SimulationResult, StepInterrupted
 
 MAX_MESSAGE_BYTES = 256 * 1024 * 1024
-"""gRPC message-size limit both ways: a 612×512 RGB image is 0.94 MB, a dense VLP-16 cloud
-(16 × 1800 points × 24 bytes) 0.69 MB; the 4 MB default would do, but a denser lidar would not."""
+"""Clients' message-size limit both ways (what they send is bounded by the server they talk to)."""
+
+STREAM_MAX_MESSAGE_BYTES = 64 * 1024 * 1024
+"""What ``record-stream`` accepts: a 612×512 RGB image is 0.94 MB, a dense VLP-16 cloud (16 × 1800
+points × 24 bytes) 0.69 MB, a 4K RGB image 25 MB."""
+
+SERVE_MAX_MESSAGE_BYTES = 1024 * 1024
+"""What ``serve`` accepts by default: a ``StepRequest`` is 17 bytes a vessel (60,000 vessels in 1 MiB)."""
+
+POSE_BYTES = 17
+"""The wire size of one ``Pose`` in a ``StepRequest`` (three float32 fields and their tags, the entry's tag and length)."""
+
+CONNECTION_AGE_S = 60.0
+"""How long a connection lives before the client is asked to reconnect (gRPC ``max_connection_age``)."""
+
+CONNECTION_GRACE_S = 10.0
+"""How long a call in flight on an aged connection may still take (``max_connection_age_grace``):
+a request body that never comes is given up after ``CONNECTION_AGE_S`` + this."""
+
+SERVER_WORKERS = 8
+"""gRPC worker threads: calls waiting for their bodies (or for the lock) do not hold up the others."""
 
 GRPC_OPTIONS = [
     ("grpc.max_receive_message_length", MAX_MESSAGE_BYTES),
     ("grpc.max_send_message_length", MAX_MESSAGE_BYTES),
 ]
 
-SERVER_OPTIONS = [*GRPC_OPTIONS, ("grpc.so_reuseport", 0)]
-"""A port in use is an error, not shared with the other server."""
+
+def server_options(
+    max_message_bytes: int, connection_age_s: float = CONNECTION_AGE_S, grace_s: float = CONNECTION_GRACE_S
+) -> list[tuple[str, int]]:
+    """A server's gRPC options: receive at most ``max_message_bytes``; a connection lives ``connection_age_s``
+    (+ ``grace_s`` for the call in flight); a port in use is an error, not shared (``so_reuseport`` off)."""
+    if not int(max_message_bytes) >= 1024:
+        raise ParameterError("max_message_bytes", f"expected at least 1024 bytes, got {max_message_bytes!r}")
+    if not connection_age_s > 0 or not grace_s >= 0:
+        raise ParameterError("connection_age_s", f"expected a positive age and grace, got {connection_age_s!r}, {grace_s!r}")
+    return [
+        ("grpc.max_receive_message_length", int(max_message_bytes)),
+        ("grpc.max_send_message_length", MAX_MESSAGE_BYTES),
+        ("grpc.max_connection_age_ms", max(1, int(connection_age_s * 1000))),
+        ("grpc.max_connection_age_grace_ms", int(grace_s * 1000)),
+        ("grpc.so_reuseport", 0),
+    ]
 
 
 _STEP_OK = gemini_osp_pb2.StepResponse(success=True)
@@ -48,29 +92,51 @@ def _message(exc: InputError) -> str:
 
 
 class SimulationServicer(gemini_osp_pb2_grpc.SimulationServicer):
-    """``DoStep``/``SetStartTime`` onto a :class:`LockstepSimulation`, one call at a time."""
+    """``DoStep``/``SetStartTime`` onto a :class:`LockstepSimulation`: one call at a time (``lock``), each
+    run on the simulation's thread (``worker``); refused once ``interrupt`` is set."""
 
-    def __init__(self, sim: LockstepSimulation):
-        self.sim = sim
+    def __init__(self, sim: LockstepSimulation, worker: futures.ThreadPoolExecutor, interrupt: threading.Event):
+        self.sim, self.worker, self.interrupt = sim, worker, interrupt
         self.lock = threading.Lock()
         self.steps = 0
         self.rejected = 0
+        self._counting = threading.Lock()
+
+    def _refuse(self, context: grpc.ServicerContext, code: grpc.StatusCode, message: str) -> None:
+        with self._counting:
+            self.rejected += 1
+        context.abort(code, message)
 
     def _call(self, fn: Callable[[], Any], context: grpc.ServicerContext) -> None:
         with self.lock:
+            if self.interrupt.is_set() or self.sim.closed:
+                self._refuse(context, grpc.StatusCode.UNAVAILABLE, "the server is shutting down; no more steps are taken")
             try:
-                fn()
+                self.worker.submit(fn).result()
+            except RecordingError as exc:  # the disk, not the request
+                self._refuse(context, grpc.StatusCode.INTERNAL, str(exc))
             except InputError as exc:
-                self.rejected += 1
-                context.abort(grpc.StatusCode.INVALID_ARGUMENT, _message(exc))
+                self._refuse(context, grpc.StatusCode.INVALID_ARGUMENT, _message(exc))
+            except StepInterrupted as exc:
+                self._refuse(context, grpc.StatusCode.UNAVAILABLE, f"the server is shutting down: the step was {exc}")
             except Exception as exc:  # noqa: BLE001 - the server keeps serving; the client is told why
-                self.rejected += 1
-                context.abort(grpc.StatusCode.INTERNAL, f"{type(exc).__name__}: {exc}")
+                self._refuse(context, grpc.StatusCode.INTERNAL, f"{type(exc).__name__}: {exc}")
 
     def DoStep(self, request: Any, context: grpc.ServicerContext) -> Any:  # noqa: N802 - Gemini's name
+        n, expected = len(request.VesselPoses), len(self.sim.settings.vessels)
+        if n != expected:  # before converting anything
+            self._refuse(
+                context,
+                grpc.StatusCode.INVALID_ARGUMENT,
+                f"VesselPoses: expected {expected} poses ({', '.join(self.sim.settings.vessels)}), got {n}",
+            )
         poses = [(p.north, p.east, p.heading) for p in request.VesselPoses]
-        self._call(lambda: self.sim.step(poses, request.time), context)
-        self.steps += 1
+
+        def step() -> None:  # on the simulation thread, one at a time
+            self.sim.step(poses, request.time, request.stepSize, interrupt=self.interrupt)
+            self.steps += 1
+
+        self._call(step, context)
         return _STEP_OK
 
     def SetStartTime(self, request: Any, context: grpc.ServicerContext) -> Any:  # noqa: N802 - Gemini's name
@@ -107,6 +173,8 @@ class ServerHandle:
     servicer: SimulationServicer
     worker: futures.ThreadPoolExecutor
     """The one thread every call runs on (and the simulation was built on)."""
+    interrupt: threading.Event
+    """Set: steps are refused and a step in progress stops before its next frame (Ctrl-C, SIGTERM)."""
     _result: SimulationResult | None = None
 
     @property
@@ -114,7 +182,8 @@ class ServerHandle:
         return f"{self.host}:{self.port}"
 
     def stop(self, grace: float | None = 1.0, completed: bool = True) -> SimulationResult:
-        """Stop serving (calls in flight finish within ``grace`` s), run the frames still due, finish the bag."""
+        """Stop serving (calls in flight finish within ``grace`` s), run the frames still due (unless a step
+        was interrupted), finish the bag."""
         if self._result is None:
             self.server.stop(grace).wait()
             with self.servicer.lock:
@@ -130,25 +199,40 @@ def serve(
     port: int = 50051,
     host: str = "127.0.0.1",
     on_frame: Callable[[Any, float, int, Any], None] | None = None,
+    interrupt: threading.Event | None = None,
+    max_message_bytes: int = SERVE_MAX_MESSAGE_BYTES,
+    connection_age_s: float = CONNECTION_AGE_S,
+    connection_grace_s: float = CONNECTION_GRACE_S,
+    workers: int = SERVER_WORKERS,
     **changes: Any,
 ) -> ServerHandle:
     """Start the ``Simulation`` server recording into the new run directory ``run_dir``; return its handle.
 
     ``settings`` (default :class:`LockstepSettings`) with ``changes`` to its fields; ``port`` 0
-    picks a free one; ``on_frame(sensor, t, frame, data)`` sees every frame (streaming).
+    picks a free one; ``on_frame(sensor, t, frame, data)`` sees every frame (streaming);
+    ``interrupt``: an event whose setting (a signal handler's) refuses further steps and stops the one
+    in progress; the gRPC limits as :func:`server_options`; ``workers`` gRPC threads.
     """
     from seatwin.settings import validated
 
     settings = validated(LockstepSettings, {**(settings or LockstepSettings()).model_dump(), **changes})
     check_port(port)
+    options = server_options(max_message_bytes, connection_age_s, connection_grace_s)
+    if not 1 <= int(workers) <= 256:
+        raise ParameterError("workers", f"expected 1..256 gRPC worker threads, got {workers!r}")
+    interrupt = interrupt if interrupt is not None else threading.Event()
     worker = futures.ThreadPoolExecutor(max_workers=1, thread_name_prefix="seatwin-serve")
     try:
         sim = worker.submit(LockstepSimulation, run_dir, settings, on_frame=on_frame).result()
     except BaseException:
         worker.shutdown()
         raise
-    server = grpc.server(worker, options=SERVER_OPTIONS)
-    servicer = SimulationServicer(sim)
+    server = grpc.server(
+        futures.ThreadPoolExecutor(max_workers=int(workers), thread_name_prefix="seatwin-grpc"),
+        options=options,
+        maximum_concurrent_rpcs=4 * int(workers),
+    )
+    servicer = SimulationServicer(sim, worker, interrupt)
     gemini_osp_pb2_grpc.add_SimulationServicer_to_server(servicer, server)
     try:
         bound = bind(server, host, port)
@@ -157,4 +241,4 @@ def serve(
         worker.shutdown()
         raise
     server.start()
-    return ServerHandle(server, host, bound, sim, servicer, worker)
+    return ServerHandle(server, host, bound, sim, servicer, worker, interrupt)

@@ -247,9 +247,13 @@ class _Servicer(sensorstreaming_pb2_grpc.SensorStreamingServicer, navigation_pb2
     def _call(self, fn: Callable[[Any], None], request: Any, context: Any) -> bool:
         import grpc
 
+        from seatwin.recording import RecordingError
+
         with self.rec.lock:
             try:
                 fn(request)
+            except RecordingError as exc:  # the disk, or the recording finished (after Ctrl-C/SIGTERM): not the request
+                context.abort(grpc.StatusCode.UNAVAILABLE, str(exc))
             except InputError as exc:
                 context.abort(grpc.StatusCode.INVALID_ARGUMENT, str(exc))
         return True
@@ -297,7 +301,7 @@ def record_stream(
     """Start a ``SensorStreaming`` + ``Navigation`` server recording into the new run directory ``run_dir``."""
     import grpc
 
-    from seatwin.api.server import SERVER_OPTIONS, bind, check_port
+    from seatwin.api.server import STREAM_MAX_MESSAGE_BYTES, bind, check_port, server_options
     from seatwin.recording import RecordingWriter
     from seatwin.recording.manifest import MANIFEST_NAME
     from seatwin.scenario.defaults import RAVNKLOA
@@ -309,7 +313,7 @@ def record_stream(
     run_dir.mkdir(parents=True, exist_ok=True)
     writer = RecordingWriter(run_dir, fmt, origin=RAVNKLOA, metadata={"recorded_by": "seatwin record-stream"})
     recorder = StreamRecorder(writer, ownship)
-    server = grpc.server(futures.ThreadPoolExecutor(max_workers=4), options=SERVER_OPTIONS)
+    server = grpc.server(futures.ThreadPoolExecutor(max_workers=8), options=server_options(STREAM_MAX_MESSAGE_BYTES))
     servicer = _Servicer(recorder)
     sensorstreaming_pb2_grpc.add_SensorStreamingServicer_to_server(servicer, server)
     navigation_pb2_grpc.add_NavigationServicer_to_server(servicer, server)

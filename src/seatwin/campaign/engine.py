@@ -271,11 +271,14 @@ def _ray_init(address: str | None, workers: int | None) -> tuple[Any, bool]:
         return ray, False
     if address:
         check_address(address)
+    from seatwin.interrupts import sigterm_kept
+
     try:
-        if address:
-            ray.init(address=address, logging_level=logging.WARNING, log_to_driver=False)
-        else:
-            ray.init(num_cpus=workers, include_dashboard=False, logging_level=logging.WARNING, log_to_driver=False)
+        with sigterm_kept():  # SIGTERM stays a Ctrl-C (ray.init installs an exit without finishing)
+            if address:
+                ray.init(address=address, logging_level=logging.WARNING, log_to_driver=False)
+            else:
+                ray.init(num_cpus=workers, include_dashboard=False, logging_level=logging.WARNING, log_to_driver=False)
     except (ConnectionError, RuntimeError, ValueError) as exc:
         raise ParameterError("address" if address else "workers", f"cannot start Ray: {error_message(exc)}") from None
     return ray, True

@@ -8,6 +8,7 @@ Recordings live in a temporary folder on the worker and are gone when the job re
 
 from __future__ import annotations
 
+import signal
 import tempfile
 import time
 from pathlib import Path
@@ -82,7 +83,7 @@ def simulate_and_track(params: dict[str, Any], work: Path) -> tuple[Any, dict[st
     t0 = time.perf_counter()
     scenario = load_scenario(params["scenario"])
     rec = work / "run"
-    simulate_scenario(
+    result = simulate_scenario(
         scenario,
         rec,
         start=scenario.start + params["start_offset"],
@@ -91,6 +92,10 @@ def simulate_and_track(params: dict[str, Any], work: Path) -> tuple[Any, dict[st
         seed=params["seed"],
         **params["settings"],
     )
+    if not result.completed:  # Ctrl-C or SIGTERM in this process: the job did not run, it must not be recorded as if it had
+        from seatwin.interrupts import Interrupted
+
+        raise Interrupted(result.interrupted_by or signal.SIGINT)
     t1 = time.perf_counter()
     map_spec = params.get("map_spec")  # None: the recording's own water mask (its harbour)
     tracks = {tuning: track_recording(rec, tuning=tuning, map_spec=map_spec).tracks for tuning in params["tunings"]}

@@ -6,6 +6,8 @@ from pathlib import Path
 
 import typer
 
+from seatwin.cli.output import overwrite_option
+
 
 def register(app: typer.Typer) -> None:
     bag_app = typer.Typer(
@@ -26,3 +28,24 @@ def register(app: typer.Typer) -> None:
 
         data = bag_info(path, scan=not fast)
         typer.echo(json.dumps(data, indent=2) if as_json else format_info(data))
+
+    @bag_app.command("repair")
+    def repair(
+        path: Path = typer.Argument(
+            ..., metavar="RUN", help="A killed run's directory, or its bag (rosbag2 folder, .mcap, .db3, .bag)."
+        ),
+        out: Path | None = typer.Option(
+            None, "--out", metavar="DIR", help="Where to write the repaired run (default: RUN.repaired beside it)."
+        ),
+        in_place: bool = typer.Option(False, "--in-place", help="Replace the original (once the repaired copy is complete)."),
+        overwrite: bool = overwrite_option(),
+    ) -> None:
+        """Rewrite a killed run's bag (MCAP without summary, rosbag2 without metadata.yaml, ROS 1 without index)
+        into a finished one that standard readers (mcap, rosbags, ROS tools) open. The messages up to the
+        bag's last flush are kept, bytes unchanged; the original is not touched unless --in-place."""
+        from seatwin.recording.repair import repair_bag
+
+        result = repair_bag(path, out, in_place=in_place, overwrite=overwrite)
+        how = "was finished already; rewritten" if result.was_finished else "repaired"
+        lost = "; the scan stopped at a damaged record (what follows it is lost)" if result.truncated else ""
+        typer.echo(f"{result.format} bag {how}: {result.messages} messages on {len(result.topics)} topics in {result.bag}{lost}")

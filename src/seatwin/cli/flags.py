@@ -42,6 +42,7 @@ FLAG_OF: dict[str, str] = {
     "radar_config": "--radar",
     "n_boot": "--boot",
     "seed0": "--seed",
+    "max_step_s": "--max-step",
 }
 
 

@@ -85,9 +85,13 @@ def run(argv: Sequence[str] | None = None) -> int:
 
 
 def _run(argv: Sequence[str] | None) -> int:
+    from seatwin.interrupts import Interrupted, interrupts_raise
+
     try:
         # Without standalone mode, a command's typer.Exit(n) comes back as the return value, not an exception.
-        code = app(args=list(argv) if argv is not None else None, prog_name="seatwin", standalone_mode=False)
+        # SIGTERM stops a verb as Ctrl-C does (a KeyboardInterrupt), never in the middle of a frame.
+        with interrupts_raise() as raised:
+            code = app(args=list(argv) if argv is not None else None, prog_name="seatwin", standalone_mode=False)
     except ParameterError as exc:
         hint = f" (give {flag_for('overwrite')} to replace it)" if isinstance(exc, OutputExistsError) else ""
         typer.echo(f"seatwin: error: {exc.render(flag_for(exc.param))}{hint}", err=True)
@@ -100,15 +104,16 @@ def _run(argv: Sequence[str] | None) -> int:
     except typer.Abort:
         typer.echo("seatwin: aborted", err=True)
         return 130
-    except KeyboardInterrupt:
-        typer.echo("seatwin: interrupted", err=True)
-        return 130
+    except KeyboardInterrupt as exc:
+        return _interrupted(exc)
     except typer.TyperException as exc:  # usage errors: unknown verb or option, bad value, missing option
         typer.echo(f"seatwin: error: {exc.format_message()}", err=True)
         return 2 if exc.exit_code in (1, 2) else exc.exit_code
     except (OSError, RecursionError, MemoryError, OverflowError) as exc:  # the last resort: one line, no traceback
         typer.echo(f"seatwin: error: {last_resort_message(exc)}", err=True)
         return 2
+    if code == 130 and raised() is not None:  # typer returns a KeyboardInterrupt as 130, silently: say which signal
+        return _interrupted(Interrupted(raised()))  # type: ignore[arg-type]
     return code if isinstance(code, int) else 0
 
 
@@ -124,6 +129,12 @@ def last_resort_message(exc: BaseException) -> str:
     if isinstance(exc, MemoryError):
         return f"out of memory{f' ({exc})' if str(exc) else ''}"
     return f"a number too large to handle ({exc})"
+
+
+def _interrupted(exc: KeyboardInterrupt) -> int:
+    """``seatwin: interrupted (Ctrl-C)`` or ``(SIGTERM)`` on stderr; status 130 either way."""
+    typer.echo(f"seatwin: interrupted ({exc or 'Ctrl-C'})", err=True)
+    return 130
 
 
 def main() -> None:

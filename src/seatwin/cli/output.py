@@ -67,18 +67,3 @@ def progress_counter(
             print(f"{what}: {done}/{total}", file=sys.stderr, flush=True)
 
     yield log
-
-
-def wait_for_sigint_or_sigterm() -> None:
-    """Block until Ctrl-C or SIGTERM (a server's main thread); the previous handlers are restored."""
-    import signal
-    import threading
-
-    stop = threading.Event()
-    previous = {s: signal.signal(s, lambda *_: stop.set()) for s in (signal.SIGINT, signal.SIGTERM)}
-    try:
-        while not stop.wait(0.2):
-            pass
-    finally:
-        for s, h in previous.items():
-            signal.signal(s, h)

@@ -28,15 +28,16 @@ def register(app: typer.Typer) -> None:
         Ctrl-C or SIGTERM finishes the bag (manifest completed: true).
         """
         from seatwin.api.streaming import record_stream
-        from seatwin.cli.output import wait_for_sigint_or_sigterm
+        from seatwin.interrupts import interrupts_set_event, wait
         from seatwin.outputs import remove_outputs
         from seatwin.recording.manifest import check_new_run
 
         remove_outputs(check_new_run(out, "out", overwrite=overwrite))
-        handle = record_stream(out, port=port, host=host, fmt=fmt.value, ownship=ownship)
-        typer.echo(f"serving SensorStreaming + Navigation on {handle.address}; recording into {out} (Ctrl-C to finish)")
-        try:
-            wait_for_sigint_or_sigterm()
-        finally:
-            counts = handle.stop()
+        with interrupts_set_event() as stop:  # before the address is announced: a signal right after it finishes the bag
+            handle = record_stream(out, port=port, host=host, fmt=fmt.value, ownship=ownship)
+            typer.echo(f"serving SensorStreaming + Navigation on {handle.address}; recording into {out} (Ctrl-C to finish)")
+            try:
+                wait(stop)
+            finally:
+                counts = handle.stop()
         typer.echo(f"completed: recorded {counts}; recording in {out}")

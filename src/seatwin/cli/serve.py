@@ -43,6 +43,15 @@ def register(app: typer.Typer) -> None:
             help="Also stream lidar clouds, camera images and radar spokes to this SensorStreaming server.",
         ),
         overwrite: bool = overwrite_option(),
+        max_step: float | None = typer.Option(
+            None,
+            "--max-step",
+            metavar="S",
+            help="The most seconds one DoStep may advance past the last (default: max(10 × its stepSize, 1 s)).",
+        ),
+        max_message_bytes: int = typer.Option(
+            1024 * 1024, "--max-message-bytes", metavar="N", help="Largest request accepted, in bytes (17 bytes a vessel)."
+        ),
     ) -> None:
         """Serve Gemini's GeminiOSPInterface.Simulation (DoStep, SetStartTime) and record what the steps make.
 
@@ -50,10 +59,13 @@ def register(app: typer.Typer) -> None:
         order) at `time` seconds since the SetStartTime POSIX start, runs every sensor due in the one
         loop and records as `seatwin simulate` does, then answers (lock-step). Steps at negative
         times are history before the start (no frames; the first frame's velocities then equal
-        `seatwin simulate`'s). Ctrl-C or SIGTERM finishes the bag (manifest completed: true).
+        `seatwin simulate`'s). A step may not go back in time nor advance more than --max-step; a refused
+        request changes nothing. Ctrl-C or SIGTERM refuses further steps, stops a step in progress and
+        finishes the bag (manifest completed: true; false if a step was cut short).
         """
         from seatwin.api.server import serve
-        from seatwin.cli.output import split_list, wait_for_sigint_or_sigterm
+        from seatwin.cli.output import split_list
+        from seatwin.interrupts import interrupts_set_event, wait
         from seatwin.outputs import remove_outputs
         from seatwin.recording.manifest import check_new_run
 
@@ -64,29 +76,34 @@ def register(app: typer.Typer) -> None:
             from seatwin.api.streaming import SensorStreamer
 
             streamer = SensorStreamer(stream)
-        handle = serve(
-            out,
-            port=port,
-            host=host,
-            seed=seed,
-            vessels=split_list(vessels, "vessels"),
-            ownship=ownship,
-            sensors=() if sensor_list == ("none",) else sensor_list,
-            lidar_mode=lidar_mode.value,
-            lidar_preset=lidar_preset,
-            fmt=fmt.value,
-            harbour=harbour,
-            radar_spokes=streamer is not None,
-            on_frame=streamer.on_frame if streamer is not None else None,
-        )
-        typer.echo(f"serving GeminiOSPInterface.Simulation on {handle.address}; recording into {out} (Ctrl-C to finish)")
-        try:
-            wait_for_sigint_or_sigterm()
-        finally:
-            result = handle.stop()
-            if streamer is not None:
-                streamer.close()
+        with interrupts_set_event() as stop:  # before the address is announced: a signal right after it finishes the bag
+            handle = serve(
+                out,
+                port=port,
+                host=host,
+                seed=seed,
+                vessels=split_list(vessels, "vessels"),
+                ownship=ownship,
+                sensors=() if sensor_list == ("none",) else sensor_list,
+                lidar_mode=lidar_mode.value,
+                lidar_preset=lidar_preset,
+                fmt=fmt.value,
+                harbour=harbour,
+                radar_spokes=streamer is not None,
+                on_frame=streamer.on_frame if streamer is not None else None,
+                interrupt=stop,
+                max_step_s=max_step,
+                max_message_bytes=max_message_bytes,
+            )
+            typer.echo(f"serving GeminiOSPInterface.Simulation on {handle.address}; recording into {out} (Ctrl-C to finish)")
+            try:
+                wait(stop)
+            finally:
+                result = handle.stop()
+                if streamer is not None:
+                    streamer.close()
+        state = "completed" if result.completed else "INCOMPLETE (a step was interrupted or failed: the manifest says why)"
         typer.echo(
-            f"completed: {handle.servicer.steps} steps ({handle.servicer.rejected} refused), "
+            f"{state}: {handle.servicer.steps} steps ({handle.servicer.rejected} refused), "
             f"{result.simulated_s:.1f} s simulated; frames {result.frames}; recording in {result.run_dir}"
         )

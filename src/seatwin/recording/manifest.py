@@ -3,11 +3,15 @@
 Written when the recording opens (``completed: false``), refreshed at every flush and rewritten
 with ``completed: true`` on a clean close. Each write goes to a temporary file that is renamed, so
 the manifest is never half-written; a run killed before its first flush may have none — both
-mean *incomplete*.
+mean *incomplete*. When the disk is full, the temporary file cannot be written: the manifest is
+then rewritten in place, compact (no indentation, so it fits in the blocks the last one used), so a
+run that failed still says why.
 """
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import json
 import os
 from collections.abc import Iterable
@@ -28,27 +32,31 @@ def write_manifest(run_dir: Path, data: dict[str, Any]) -> None:
     (a run that fails writes its error this way); otherwise the ``OSError`` is raised, the old manifest intact."""
     path = Path(run_dir) / MANIFEST_NAME
     tmp = path.with_name(path.name + ".part")
-    text = (json.dumps(data, indent=2, sort_keys=False, default=_default) + "\n").encode("utf8")
     try:
-        tmp.write_bytes(text)
+        tmp.write_text(json.dumps(data, indent=2, sort_keys=False, default=_default) + "\n", encoding="utf8")
         os.replace(tmp, path)
     except OSError:
-        tmp.unlink(missing_ok=True)
-        if not _rewrite_in_place(path, text):
+        with contextlib.suppress(OSError):
+            tmp.unlink()  # a full disk leaves it empty or cut: never leave it behind
+        if not path.is_file():
             raise
+        try:
+            _overwrite(path, (json.dumps(data, separators=(",", ":"), default=_default) + "\n").encode("utf8"))
+        except OSError:
+            pass
+        else:
+            return
+        raise
 
 
-def _rewrite_in_place(path: Path, text: bytes) -> bool:
-    """Overwrite ``path`` with ``text`` without allocating: only when its blocks already hold that many bytes."""
-    try:
-        if len(text) > path.stat().st_blocks * 512:
-            return False
-        with path.open("r+b") as f:
-            f.write(text)
-            f.truncate()
-    except OSError:
-        return False
-    return True
+def _overwrite(path: Path, data: bytes) -> None:
+    """Rewrite ``path`` in place, only when the blocks it has already hold ``data`` (no new space needed);
+    otherwise an ``OSError`` and the file as it was."""
+    if len(data) > path.stat().st_blocks * 512:
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(path))
+    with path.open("r+b") as f:
+        f.write(data)
+        f.truncate(len(data))
 
 
 def read_manifest(run_dir: Path) -> dict[str, Any] | None:

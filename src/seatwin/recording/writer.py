@@ -71,9 +71,10 @@ def _timed(method: F) -> F:
     return wrapper  # type: ignore[return-value]
 
 
-class RecordingError(OSError):
-    """Writing the recording failed (e.g. out of disk); the bag so far stays readable, the manifest says incomplete.
-    An ``OSError``, so the CLI prints it as one line."""
+class RecordingError(InputError):
+    """Writing the recording failed (e.g. out of disk): names the bag; the bag so far stays readable, the
+    manifest says incomplete and why. An :class:`~seatwin.errors.InputError`, so the CLI prints one line
+    and exits with status 2."""
 
 
 class RecordingWriter:
@@ -135,6 +136,10 @@ class RecordingWriter:
         """Seconds spent in this writer's calls (``total_s``; recording_share = total_s / wall time),
         of which serialising and handing bytes to the bag storage."""
         self._depth = 0
+        self._frame_depth = 0
+        self._frame_block = _FrameBlock(self._begin_frame, self._end_frame)
+        self._flush_due: float | None = None
+        """A flush postponed to the end of the :meth:`frame` block (the time it became due)."""
 
         for existing in (self.bag, self.run_dir / MANIFEST_NAME):
             if existing.exists():
@@ -198,7 +203,7 @@ class RecordingWriter:
     def _write_batch(self, t: float, items: Sequence[tuple[str, str, bytes | memoryview]]) -> None:
         """Write serialised messages all stamped ``t`` (one stamp conversion, one flush check); count them."""
         if self._closed:
-            raise RecordingError(f"{self.bag}: recording is closed")
+            raise RecordingError(self.bag, "recording is closed")
         t0 = _time.perf_counter()
         try:
             stamp = M.stamp_ns(t)
@@ -225,12 +230,30 @@ class RecordingWriter:
             if self._last_flush is None:
                 self._last_flush = t
             elif t - self._last_flush >= self.flush_interval_s or t0 - self._last_flush_wall >= self.flush_wall_s:
-                self.flush()
-                self._last_flush, self._last_flush_wall = t, t0
+                if self._frame_depth:
+                    self._flush_due = t
+                else:
+                    self.flush()
+                    self._last_flush, self._last_flush_wall = t, t0
         except OSError as exc:
             self._fail(exc)
         finally:
             self.timing["write_s"] += _time.perf_counter() - t0
+
+    def frame(self) -> _FrameBlock:
+        """A block whose messages (one frame's) reach the disk together: a flush that falls due inside it
+        waits for its end, so a run killed outright (SIGKILL) leaves a SQLite3 bag ending at a frame boundary."""
+        return self._frame_block
+
+    def _begin_frame(self) -> None:
+        self._frame_depth += 1
+
+    def _end_frame(self) -> None:
+        self._frame_depth -= 1
+        if not self._frame_depth and self._flush_due is not None and not self._closed:
+            t, self._flush_due = self._flush_due, None
+            self.flush()
+            self._last_flush, self._last_flush_wall = t, _time.perf_counter()
 
     @_timed
     def flush(self) -> None:
@@ -248,13 +271,15 @@ class RecordingWriter:
             self._fail(exc)
 
     def _fail(self, exc: OSError) -> None:
-        self._error = f"{type(exc).__name__}: {exc}"
+        self._error = f"{type(exc).__name__}: {_strerror(exc)}"
         self._closed = True
         with contextlib.suppress(Exception):  # the bag is being abandoned; its readable prefix stays
             self.storage.abort()
         with contextlib.suppress(OSError):
             self._write_manifest()
-        raise RecordingError(f"{self.bag}: recording stopped: {self._error}; the bag is readable up to its last flush") from exc
+        raise RecordingError(
+            self.bag, f"recording stopped: {_strerror(exc)}; the bag is readable up to its last flush ({MANIFEST_NAME} says so)"
+        ) from exc
 
     # ------------------------------------------------------------------ typed helpers
     @_timed
@@ -444,13 +469,16 @@ class RecordingWriter:
         try:
             self.storage.close()
         except OSError as exc:
-            self._error = f"{type(exc).__name__}: {exc}"
+            self._error = f"{type(exc).__name__}: {_strerror(exc)}"
             with contextlib.suppress(Exception):
                 self.storage.abort()
             completed = False
-        self._write_manifest(completed=completed and self._error is None)
+        try:
+            self._write_manifest(completed=completed and self._error is None)
+        except OSError as exc:
+            raise RecordingError(self.run_dir / MANIFEST_NAME, f"cannot write the manifest: {_strerror(exc)}") from exc
         if self._error and not error:
-            raise RecordingError(f"{self.bag}: closing failed: {self._error}")
+            raise RecordingError(self.bag, f"closing failed: {self._error}")
 
     @property
     def manifest(self) -> dict[str, Any]:
@@ -466,6 +494,21 @@ class RecordingWriter:
             self.close(completed=False, error=f"{type(exc).__name__}: {exc}")
 
 
+class _FrameBlock:
+    """:meth:`RecordingWriter.frame`'s context manager (one per writer, re-entrant; a class: entered once a frame)."""
+
+    __slots__ = ("begin", "end")
+
+    def __init__(self, begin: Callable[[], None], end: Callable[[], None]) -> None:
+        self.begin, self.end = begin, end
+
+    def __enter__(self) -> None:
+        self.begin()
+
+    def __exit__(self, *exc: object) -> None:
+        self.end()
+
+
 def open_recording(run_dir: str | os.PathLike[str], fmt: str = "mcap", **kwargs: Any) -> RecordingWriter:
     """Start a recording in ``run_dir`` (see :class:`RecordingWriter` for the options)."""
     return RecordingWriter(run_dir, fmt, **kwargs)
@@ -474,6 +517,11 @@ def open_recording(run_dir: str | os.PathLike[str], fmt: str = "mcap", **kwargs:
 ENU_NED_ROTATION = (0.7071067811865475, 0.7071067811865475, 0.0, 0.0)
 """The rotation of ``world_ned`` in the ENU display frame: ``quaternion_from_matrix(R_ENU_NED)`` (tested),
 written out so that the first recorded step does not wait for scipy to load."""
+
+
+def _strerror(exc: OSError) -> str:
+    """An operating-system error as one line: ``No space left on device (errno 28)``."""
+    return f"{exc.strerror} (errno {exc.errno})" if exc.strerror else str(exc)
 
 
 def _utcnow() -> str:

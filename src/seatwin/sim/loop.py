@@ -5,21 +5,29 @@ sensors were given), each computed at its own time (``sensor.capture``). :func:`
 them into a new recording (``sensor.record``) through :class:`Stepper`, which a lock-step server
 (``seatwin serve``) advances step by step instead; in-memory users (the fidelity method's replica)
 iterate :func:`frames` directly. Random draws are keyed by (seed, sensor, frame), so a run is
-bit-identical whatever else runs. Ctrl-C stops cleanly: the bag is closed, readable, and the
-manifest says ``completed: false``.
+bit-identical whatever else runs. Ctrl-C or SIGTERM stops cleanly (:mod:`seatwin.interrupts`): never
+in the middle of recording a frame (its messages are written all or none), the bag is closed,
+readable, and the manifest says ``completed: false`` with ``error: interrupted (Ctrl-C)`` or ``(SIGTERM)``.
 """
 
 from __future__ import annotations
 
 import heapq
+import signal
 import sys
+import threading
 import time as _time
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from seatwin.interrupts import deferred_interrupts, interrupts_raise
 from seatwin.sim.sensors import SimSensor
+
+
+class StepInterrupted(Exception):
+    """:meth:`Stepper.advance_to` stopped between two frames because its ``interrupt`` event was set."""
 
 
 @dataclass
@@ -31,6 +39,8 @@ class SimulationResult:
     frames: dict[str, int] = field(default_factory=dict)
     recording_s: float = 0.0
     """Wall time spent serialising and writing messages."""
+    interrupted_by: int | None = None
+    """The signal (SIGINT, SIGTERM) that stopped the run, if one did."""
 
     @property
     def realtime_factor(self) -> float:
@@ -80,10 +90,19 @@ class Stepper:
         self._next = [0] * len(self.sensors)
         writer.write_static_transforms(self.t0, [m for s in self.sensors for m in s.static_transforms(writer.topics)])
 
-    def advance_to(self, t1: float, advance: Callable[[float, float], None] | None = None, wall0: float = 0.0) -> int:
+    def advance_to(
+        self,
+        t1: float,
+        advance: Callable[[float, float], None] | None = None,
+        wall0: float = 0.0,
+        interrupt: threading.Event | None = None,
+    ) -> int:
         """Run (capture, record, ``on_frame``) every frame in [horizon, t1) in time order; return how many.
 
-        ``advance(simulated_s, wall_s)`` is called after each frame (progress).
+        ``advance(simulated_s, wall_s)`` is called after each frame (progress). A frame is recorded
+        whole: Ctrl-C/SIGTERM during its recording takes effect after it. ``interrupt`` set (by
+        another thread) stops the loop before the next frame with :class:`StepInterrupted`; the
+        frames not run stay due.
         """
         if t1 <= self.horizon:
             return 0
@@ -91,17 +110,22 @@ class Stepper:
         for i, s in enumerate(self.sensors):
             times = s.frame_times(self.t0, t1)
             events.extend((float(times[k]), i, k) for k in range(self._next[i], len(times)))
-            self._next[i] = max(self._next[i], len(times))
         heapq.heapify(events)
-        n = len(events)
+        n = 0
         while events:
+            if interrupt is not None and interrupt.is_set():
+                raise StepInterrupted(f"interrupted before the frame at {events[0][0] - self.t0:.3f} s")
             t, i, k = heapq.heappop(events)
-            data = self.sensors[i].capture(t, k)
-            self.sensors[i].record(self.writer, t, data)
+            sensor = self.sensors[i]
+            data = sensor.capture(t, k)
+            with deferred_interrupts(), self.writer.frame():
+                sensor.record(self.writer, t, data)
+                self._next[i] = k + 1
+                self.counts[sensor.name] += 1
+                self.done_t = t
+            n += 1
             if self.on_frame is not None:
-                self.on_frame(self.sensors[i], t, k, data)
-            self.counts[self.sensors[i].name] += 1
-            self.done_t = t
+                self.on_frame(sensor, t, k, data)
             if advance is not None:
                 advance(t - self.t0, _time.perf_counter() - wall0)
         self.horizon = float(t1)
@@ -133,24 +157,30 @@ def simulate(
         run_dir, fmt, topics=topics, sensors={s.name: s.parameters() for s in sensors}, **(writer_kwargs or {})
     )
     stepper = None
-    try:
-        stepper = Stepper(sensors, writer, t0, on_frame=on_frame)
-        with _progress(progress, t1 - t0) as advance:
-            stepper.advance_to(t1, advance, wall0)
-        completed = True
-    except KeyboardInterrupt:
-        writer.close(completed=False, error="interrupted (Ctrl-C)")
-    except BaseException as exc:
-        writer.close(completed=False, error=f"{type(exc).__name__}: {exc}")
-        raise
-    else:
-        writer.close(completed=True)
+    interrupted_by = None
+    with interrupts_raise():
+        try:
+            stepper = Stepper(sensors, writer, t0, on_frame=on_frame)
+            with _progress(progress, t1 - t0) as advance:
+                stepper.advance_to(t1, advance, wall0)
+            completed = True
+        except KeyboardInterrupt as exc:
+            interrupted_by = getattr(exc, "signum", signal.SIGINT)
+            with deferred_interrupts(discard=True):  # a second Ctrl-C does not cut the bag's finishing
+                writer.close(completed=False, error=f"interrupted ({exc or 'Ctrl-C'})")
+        except BaseException as exc:
+            with deferred_interrupts(discard=True):
+                writer.close(completed=False, error=f"{type(exc).__name__}: {exc}")
+            raise
+        else:
+            with deferred_interrupts(discard=True):
+                writer.close(completed=True)
     wall = _time.perf_counter() - wall0
     rec_s = writer.timing.get("total_s", writer.timing["serialize_s"] + writer.timing["write_s"])
     done_t = stepper.done_t if stepper is not None else t0
     counts = stepper.counts if stepper is not None else {s.name: 0 for s in sensors}
     sim_s = (t1 - t0) if completed else max(0.0, done_t - t0)
-    return SimulationResult(Path(run_dir), completed, sim_s, wall, counts, rec_s)
+    return SimulationResult(Path(run_dir), completed, sim_s, wall, counts, rec_s, interrupted_by)
 
 
 class _progress:
