@@ -101,3 +101,35 @@ def test_cosim_cli_one_command_and_export(tmp_path, capsys):
     assert run(["cosim", "export", "ferry_crossing", "--out", str(tmp_path / "x"), "--step", "0"]) == 2
     assert "--step" in capsys.readouterr().err
     assert run(["cosim", "run", str(tmp_path / "nothing.xml"), "--out", str(tmp_path / "y")]) == 2
+
+
+@pytest.fixture(scope="module")
+def exported(tmp_path_factory):
+    pytest.importorskip("pythonfmu")
+    sc = builtin_scenario("ferry_crossing")
+    return sc, export_system(sc, tmp_path_factory.mktemp("sys"))
+
+
+def test_exported_fmus_pass_fmpy_validation(exported):
+    validation = pytest.importorskip("fmpy.validation", reason="FMPy (the `test` extra) is not installed")
+    _, paths = exported
+    for fmu in (paths["player"], paths["bridge"]):
+        assert validation.validate_fmu(str(fmu)) == [], fmu.name
+
+
+def test_player_outputs_start_exactly_at_the_scenarios_first_pose(exported):
+    import zipfile
+
+    sc, paths = exported
+    with zipfile.ZipFile(paths["player"]) as z:
+        root = ET.fromstring(z.read("modelDescription.xml"))
+    start = {}
+    for v in root.iter("ScalarVariable"):
+        assert v.get("causality") == "output" and v.get("initial") == "exact", v.get("name")
+        start[v.get("name")] = float(v.find("Real").get("start"))
+    assert start["start_time"] == sc.start
+    assert root.find("ModelStructure/InitialUnknowns") is None
+    for v in sc.vessels:
+        s = sc.state_at(v.name, sc.start)
+        assert [start[f"{v.name}.{q}"] for q in ("north", "east")] == pytest.approx([s.north, s.east], abs=1e-9)
+        assert start[f"{v.name}.heading"] == pytest.approx(math.degrees(s.heading) % 360.0, abs=1e-9)
