@@ -47,6 +47,7 @@ from seatwin.scenario.defaults import NOMINAL_DIMENSIONS, OWNSHIP_NAME, RAVNKLOA
 from seatwin.settings import Settings
 from seatwin.sim.loop import SimulationResult, Stepper
 from seatwin.sim.sensors import GroundTruthSensor, LidarSensor, SimSensor
+from seatwin.sim.settings import DEFAULT_SENSORS
 
 DEFAULT_VESSELS: tuple[str, ...] = (TARGETS_BY_COLUMN[1][0], TARGETS_BY_COLUMN[2][0], OWNSHIP_NAME)
 """The Gemini CSV's V1, V2, V3 order: Havfruen, Finn, milliAmpere (the ownship)."""
@@ -64,7 +65,7 @@ class LockstepSettings(Settings):
     )
     ownship: str | None = Field(OWNSHIP_NAME, description="The vessel carrying the sensors (one of vessels; None: no sensors).")
     sensors: tuple[Literal["lidar", "radar", "camera"], ...] = Field(
-        ("lidar",), description="Ownship sensors (empty: ground truth only); ground truth is always recorded."
+        DEFAULT_SENSORS, description="Ownship sensors (empty: ground truth only); ground truth is always recorded."
     )
     seed: int = Field(0, description="Seed of every random draw.")
     lidar_mode: Literal["raycast", "depthbuffer", "depthbuffer-legacy", "depthbuffer-plane"] = Field(

@@ -89,7 +89,8 @@ def simulate_and_track(params: dict[str, Any], work: Path) -> tuple[Any, dict[st
         duration=params["duration"],
         progress=False,
         seed=params["seed"],
-        **params["settings"],
+        # the tracker reads lidar and radar by default: no camera rig (the entry points' default) unless the settings ask
+        **{"sensors": ("lidar",), **params["settings"]},
     )
     t1 = time.perf_counter()
     map_spec = params.get("map_spec")  # None: the recording's own water mask (its harbour)

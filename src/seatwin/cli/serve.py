@@ -7,6 +7,7 @@ from pathlib import Path
 import typer
 
 from seatwin.cli.simulate import BagFormat, LidarMode
+from seatwin.sim.settings import DEFAULT_SENSORS
 
 
 def register(app: typer.Typer) -> None:
@@ -21,7 +22,7 @@ def register(app: typer.Typer) -> None:
         ),
         ownship: str = typer.Option("milliAmpere", "--ownship", help="The vessel carrying the sensors."),
         sensors: str = typer.Option(
-            "lidar",
+            ",".join(DEFAULT_SENSORS),
             "--sensors",
             metavar="LIST",
             help="Comma-separated ownship sensors: lidar, radar, camera; 'none' for ground truth only.",

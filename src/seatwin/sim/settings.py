@@ -14,6 +14,9 @@ from seatwin.layout.harbours import check_harbour_spec
 from seatwin.settings import Settings
 
 SENSOR_NAMES = ("lidar", "radar", "camera")
+DEFAULT_SENSORS: tuple[Literal["lidar", "radar", "camera"], ...] = ("lidar", "camera")
+"""The ownship sensors every entry point records unless told otherwise (``simulate``, ``simulate_run``,
+``serve``, ``cosim run``, CLI and library alike): the thesis's twin, the VLP-16 and the three cameras."""
 LIDAR_MODES = ("raycast", "depthbuffer", "depthbuffer-legacy", "depthbuffer-plane")
 BAG_FORMATS = ("mcap", "sqlite3", "ros1")
 
@@ -22,7 +25,9 @@ class SimulationSettings(Settings):
     """Every choice of ``simulate`` besides the scenario and the time window."""
 
     sensors: tuple[Literal["lidar", "radar", "camera"], ...] = Field(
-        ("lidar",), min_length=1, description="Sensors on the ownship, simulated in one loop (ground truth is always recorded)."
+        DEFAULT_SENSORS,
+        min_length=1,
+        description="Sensors on the ownship, simulated in one loop (ground truth is always recorded).",
     )
     seed: int | None = Field(None, description="Seed of every random draw (default: the scenario's).")
     lidar_preset: Literal["vlp16", "vlp16-thesis"] = Field(
