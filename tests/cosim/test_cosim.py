@@ -153,7 +153,8 @@ def test_one_default_sensor_set_for_every_entry_point():
 
     from seatwin.api.lockstep import LockstepSettings
     from seatwin.cosim.osp import export_system
-    from seatwin.sim.settings import DEFAULT_SENSORS, SimulationSettings
+    from seatwin.defaults import DEFAULT_SENSORS
+    from seatwin.sim.settings import SimulationSettings
 
     assert DEFAULT_SENSORS == ("lidar", "camera")  # the thesis's twin
     assert SimulationSettings().sensors == LockstepSettings().sensors == DEFAULT_SENSORS

@@ -39,6 +39,7 @@ from numpy.typing import NDArray
 from pydantic import Field, field_validator
 
 from seatwin.api.live import LiveGroundTruth, LiveTracks
+from seatwin.defaults import DEFAULT_SENSORS
 from seatwin.errors import InputError, ParameterError
 from seatwin.layout.harbours import check_harbour_spec
 from seatwin.recording.manifest import MANIFEST_NAME
@@ -47,7 +48,6 @@ from seatwin.scenario.defaults import NOMINAL_DIMENSIONS, OWNSHIP_NAME, RAVNKLOA
 from seatwin.settings import Settings
 from seatwin.sim.loop import SimulationResult, Stepper
 from seatwin.sim.sensors import GroundTruthSensor, LidarSensor, SimSensor
-from seatwin.sim.settings import DEFAULT_SENSORS
 
 DEFAULT_VESSELS: tuple[str, ...] = (TARGETS_BY_COLUMN[1][0], TARGETS_BY_COLUMN[2][0], OWNSHIP_NAME)
 """The Gemini CSV's V1, V2, V3 order: Havfruen, Finn, milliAmpere (the ownship)."""

@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from seatwin.cli.simulate import BagFormat, LidarMode
-from seatwin.sim.settings import DEFAULT_SENSORS
+from seatwin.defaults import DEFAULT_SENSORS
 
 HARBOUR_HELP = (
     "Harbour instead of the scenario's own (a Gemini CSV's: ravnkloa; a built-in's: default), as `simulate`: 'default', "

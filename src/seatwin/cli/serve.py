@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from seatwin.cli.simulate import BagFormat, LidarMode
-from seatwin.sim.settings import DEFAULT_SENSORS
+from seatwin.defaults import DEFAULT_SENSORS
 
 
 def register(app: typer.Typer) -> None:

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import typer
 
-from seatwin.sim.settings import DEFAULT_SENSORS
+from seatwin.defaults import DEFAULT_ROS_DISTRO, DEFAULT_SENSORS, ROS_DISTROS
 
 
 class LidarMode(str, Enum):
@@ -21,6 +21,15 @@ class BagFormat(str, Enum):
     mcap = "mcap"
     sqlite3 = "sqlite3"
     ros1 = "ros1"
+
+
+RosDistro = Enum("RosDistro", {d: d for d in ROS_DISTROS}, type=str)  # type: ignore[misc]
+DEFAULT_DISTRO = RosDistro(DEFAULT_ROS_DISTRO)
+ROS_DISTRO_HELP = (
+    "ROS 2 distribution the rosbag2 metadata (mcap, sqlite3) is written for: "
+    + ", ".join(f"{d} {v}" for d, v in ROS_DISTROS.items())
+    + "; a distro reads its own version and older ones."
+)
 
 
 def register(app: typer.Typer) -> None:
@@ -48,6 +57,7 @@ def register(app: typer.Typer) -> None:
         range_noise: float | None = typer.Option(None, "--range-noise", help="Range noise σ in metres (default 0.015)."),
         dissipation: bool = typer.Option(False, "--dissipation", help="Range-dependent return probability."),
         fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Bag format."),
+        ros_distro: RosDistro = typer.Option(DEFAULT_DISTRO, "--ros-distro", help=ROS_DISTRO_HELP),
         date: str | None = typer.Option(None, "--date", help="UTC date YYYY-MM-DD of a TimeOfDay CSV."),
         sensors: str = typer.Option(
             ",".join(DEFAULT_SENSORS),
@@ -100,6 +110,7 @@ def register(app: typer.Typer) -> None:
             range_noise=range_noise,
             dissipation=dissipation,
             fmt=fmt.value,
+            ros_distro=ros_distro.value,
             radar_config=radar,
             radar_spokes=streamer is not None,
             camera_hfov_deg=camera_hfov,

@@ -6,7 +6,7 @@ north, east, heading), ``GeminiBridge.fmu`` (those poses sent to a ``Simulation`
 ``DoStep``), ``OspSystemStructure.xml`` connecting them (``<Algorithm>fixedStep</Algorithm>``) and
 ``seatwin-cosim.json`` (vessel order, ownship, duration, harbour, sensors: what ``seatwin cosim run`` needs to
 serve; the harbour and sensors are ``seatwin simulate``'s: the scenario's own harbour — a Gemini CSV's is
-``ravnkloa`` — and :data:`~seatwin.sim.settings.DEFAULT_SENSORS`, unless given).
+``ravnkloa`` — and :data:`~seatwin.defaults.DEFAULT_SENSORS`, unless given).
 :func:`run_system` starts the ``Simulation`` server in-process, points the bridge at it, and runs the
 system with libcosim's fixed-step algorithm until the scenario's end (libcosim times are integer ns).
 """
@@ -23,10 +23,11 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
+from seatwin.defaults import DEFAULT_SENSORS
 from seatwin.errors import InputError, ParameterError
 from seatwin.scenario import Scenario
 from seatwin.settings import validated
-from seatwin.sim.settings import DEFAULT_SENSORS, SimulationSettings
+from seatwin.sim.settings import SimulationSettings
 
 FMU_SOURCES = Path(__file__).parent / "fmus"
 SYSTEM_FILE = "OspSystemStructure.xml"
@@ -167,7 +168,7 @@ def run_system(
     recording into ``out``; return the server's :class:`~seatwin.sim.loop.SimulationResult`.
 
     ``sensors`` (``()``: ground truth only) and ``harbour`` default to those the export wrote into
-    ``seatwin-cosim.json`` (a file without them: :data:`~seatwin.sim.settings.DEFAULT_SENSORS` and ``default``).
+    ``seatwin-cosim.json`` (a file without them: :data:`~seatwin.defaults.DEFAULT_SENSORS` and ``default``).
 
     ``duration`` (default: the scenario's) is rounded down to whole steps ``h``; libcosim runs one step
     past it, so the bridge sends the poses at 0, h, …, duration and the recording holds the frames

@@ -10,13 +10,11 @@ from typing import Literal
 
 from pydantic import Field, field_validator
 
+from seatwin.defaults import DEFAULT_ROS_DISTRO, DEFAULT_SENSORS
 from seatwin.layout.harbours import check_harbour_spec
 from seatwin.settings import Settings
 
 SENSOR_NAMES = ("lidar", "radar", "camera")
-DEFAULT_SENSORS: tuple[Literal["lidar", "radar", "camera"], ...] = ("lidar", "camera")
-"""The ownship sensors every entry point records unless told otherwise (``simulate``, ``simulate_run``,
-``serve``, ``cosim run``, CLI and library alike): the thesis's twin, the VLP-16 and the three cameras."""
 LIDAR_MODES = ("raycast", "depthbuffer", "depthbuffer-legacy", "depthbuffer-plane")
 BAG_FORMATS = ("mcap", "sqlite3", "ros1")
 
@@ -67,6 +65,11 @@ class SimulationSettings(Settings):
     )
     camera_labels: bool = Field(True, description="Record ground-truth 2-D boxes of the vessels per camera image.")
     fmt: Literal["mcap", "sqlite3", "ros1"] = Field("mcap", description="Bag format.")
+    ros_distro: Literal["humble", "iron", "jazzy", "kilted"] = Field(
+        DEFAULT_ROS_DISTRO,
+        description="ROS 2 distribution a rosbag2 bag (mcap, sqlite3) is written for: its metadata version "
+        "(humble 5, iron 7, jazzy and kilted 9); a distro reads its own version and older ones.",
+    )
     ground_truth_rate_hz: float = Field(10.0, gt=0, description="Rate of the ground-truth topics [Hz].")
 
     @field_validator("mount_yaw_bias_deg")
