@@ -39,6 +39,8 @@ class TopicConfig:
     pose: str = "/ground_truth/{vessel}/pose"
     odom: str = "/ground_truth/{vessel}/odom"
     fix: str = "/ground_truth/{vessel}/fix"
+    markers: str = "/ground_truth/markers"
+    """Every vessel as a 3-D box and its name (``visualization_msgs/MarkerArray``, RViz and Foxglove)."""
     tf: str = "/tf"
     tf_static: str = "/tf_static"
     world_frame: str = "world_ned"
