@@ -5,8 +5,9 @@ ones included) and written with the recording's storage classes
 (:func:`~seatwin.recording.storage.open_storage`), message by message in the reader's order with
 the same log times. Messages are copied as bytes between the two rosbag2 formats and converted
 at the byte level between CDR and ROS 1 (rosbags' ``cdr_to_ros1``/``ros1_to_cdr``, which add or
-drop ``std_msgs/Header.seq``). Message definitions come from seatwin's type store of the target
-format, or, for a type it does not know, from the source bag's own definitions. ``/tf_static``
+drop ``std_msgs/Header.seq``). Messages keep their layout, so the new bag's definitions are the source
+bag's own (with the target ROS version's ``std_msgs/Header``): a ROS 2 Humble ``visualization_msgs/Marker``
+(texture and mesh fields) stays one in a ROS 1 bag, self-described by its definition. ``/tf_static``
 (the recording's latched topic) is written latched.
 
 A run directory converts into a run directory: its other files (scenario, notes) are copied and
@@ -46,19 +47,19 @@ class ConvertResult:
     """Messages per topic written."""
 
 
-def _target_store(fmt: str, source_store: Any, msgtypes: set[str]) -> Any:
-    """seatwin's store of ``fmt``'s ROS version, with the source's definitions of any type it lacks."""
+HEADER = "std_msgs/msg/Header"
+
+
+def _with_header(source_store: Any, ros1: bool) -> Any:
+    """The source bag's own definitions with ROS 1's ``std_msgs/Header`` (``seq`` first) or ROS 2's."""
     from rosbags.typesys import Stores, get_typestore
 
     from seatwin.recording.messages import typestore
 
-    own = typestore(fmt)
-    missing = {t for t in msgtypes if t not in own.types}
-    if not missing:
-        return own
+    defs = dict(source_store.fielddefs)
+    defs[HEADER] = typestore("ros1" if ros1 else "mcap").fielddefs[HEADER]
     store = get_typestore(Stores.EMPTY)
-    store.register(dict(own.fielddefs))
-    store.register({t: source_store.fielddefs[t] for t in missing if t in source_store.fielddefs})
+    store.register(defs)
     return store
 
 
@@ -83,9 +84,10 @@ def convert_bag(
             bag = bag_path(out, fmt)
         else:
             bag = out.with_suffix(".bag") if fmt == "ros1" and out.suffix != ".bag" else out
-        types = {info.msgtype for info in rec.topics.values()}
-        store = _target_store(fmt, rec.store, types)
-        convert = _converter(rec.format, fmt, _target_store("mcap", rec.store, types))
+        # the messages keep their layout (a Humble Marker stays one in a ROS 1 bag, and the other way round), so
+        # the target's definitions are the source's; only the Header is each ROS version's own
+        store = _with_header(rec.store, ros1=fmt == "ros1")
+        convert = _converter(rec.format, fmt, _with_header(rec.store, ros1=False))
         latched = {TopicConfig().tf_static, rec.topic_config.tf_static}
         bag.parent.mkdir(parents=True, exist_ok=True)
         made = out if run_dir is not None else bag
@@ -120,6 +122,12 @@ def convert_bag(
         if run_dir is not None:
             _copy_run(run_dir, rec.bag, rec.manifest or {}, out, bag, fmt, ros_distro)
     return ConvertResult(out if run_dir is not None else bag, bag, fmt, None if fmt == "ros1" else ros_distro, counts)
+
+
+def cdr_converter(rec: Any) -> tuple[Any, Any]:
+    """(ROS 2 type store of the open recording ``rec``'s own definitions, bytes, msgtype → CDR bytes)."""
+    store = _with_header(rec.store, ros1=False)
+    return store, _converter(rec.format, "mcap", store)
 
 
 def _converter(src_fmt: str, fmt: str, ros2_store: Any) -> Any:

@@ -2,10 +2,12 @@
 
 Per frame and camera: ``/camera/<name>/image_raw`` (``sensor_msgs/Image`` bgr8),
 ``/camera/<name>/camera_info`` (plumb-bob K, R, P, D) and, with ``labels``,
-``/camera/<name>/labels`` (``vision_msgs/Detection2DArray``: one detection per vessel in view,
-``id`` = vessel name, results ``("vessel", visible fraction)`` and ``("truncation", truncation)``) and
-the same boxes as ``/camera/<name>/annotations`` (``foxglove_msgs/ImageAnnotations``, which Foxglove's
-Image panel draws; visible fraction and truncation in each box's ``metadata`` and its text).
+``/camera/<name>/labels`` (``vision_msgs/Detection2DArray``: one detection per vessel in view, ``id`` =
+vessel name, one hypothesis ``("vessel", 1.0)``: a ground-truth box is certain, and ``score`` is a
+confidence as vision_msgs means it) and the same boxes as ``/camera/<name>/annotations``
+(``foxglove_msgs/ImageAnnotations``, which Foxglove's Image panel draws; each box's ``metadata`` holds
+``instance``, ``class``, ``visible_fraction`` and ``truncation``, for which vision_msgs has no field, and
+its text says them).
 Frame ids are the cameras' optical frames, mounted on the ownship's body frame on /tf_static.
 """
 
@@ -62,17 +64,13 @@ def camera_topics(topics: TopicConfig, camera: str) -> tuple[str, str, str]:
     return image, f"{base}/camera_info", f"{base}/labels"
 
 
+GROUND_TRUTH_CONFIDENCE = 1.0
+"""The ``hypothesis.score`` of a ground-truth box: its class is known."""
+
+
 def label_boxes(labels: list[BoxLabel]) -> list[Box2D]:
-    """Labels as :class:`~seatwin.recording.messages.Box2D` (results: visible fraction, truncation)."""
-    return [
-        Box2D(
-            b.instance,
-            *b.center,
-            *b.size,
-            results=((b.label, b.visible_fraction), ("truncation", b.truncation)),
-        )
-        for b in labels
-    ]
+    """Labels as :class:`~seatwin.recording.messages.Box2D` (one hypothesis: the class, confidence 1)."""
+    return [Box2D(b.instance, *b.center, *b.size, results=((b.label, GROUND_TRUTH_CONFIDENCE),)) for b in labels]
 
 
 def annotations_topic(labels_topic: str) -> str:
