@@ -47,6 +47,7 @@ COMMAND_MODULES: list[str] = [
     "serve",
     "record_stream",
     "cosim",
+    "view",
 ]
 
 
