@@ -76,7 +76,8 @@ def test_vessel_markers_follow_the_body_frames(run: Path) -> None:
         markers = list(rec.messages("/ground_truth/markers"))
         poses = list(rec.messages(f"/ground_truth/{sc.vessels[0].name}/pose"))
         tf_children = {t.child_frame_id for m in rec.messages("/tf") for t in m.msg.transforms}
-    assert len(markers) == len(poses) == 3
+    assert len(poses) == 3 and len(markers) == 1  # once a second: the first ground-truth step of 0.3 s
+    assert markers[0].log_time_ns == poses[0].log_time_ns
     for m in markers:
         boxes = [x for x in m.msg.markers if x.type == 1]
         names = {x.text for x in m.msg.markers if x.type == 9}
@@ -87,6 +88,7 @@ def test_vessel_markers_follow_the_body_frames(run: Path) -> None:
                 (v.dimensions.length, v.dimensions.beam, v.dimensions.height)
             )
             assert box.pose.position.z == pytest.approx(-v.dimensions.height / 2)  # FRD: above the water is −z
+            assert box.header.stamp.sec == box.header.stamp.nanosec == 0  # the latest /tf
 
 
 def test_layout_opens_topics_a_run_has(run: Path) -> None:
@@ -122,3 +124,33 @@ def test_labels_of_older_recordings_still_read() -> None:
     assert (box.instance, box.visible, box.truncation) == ("Finn", 0.6, 0.25)
     (box,) = label_boxes(old, {"Finn": (0.5, 0.0)})  # the annotations' values win where given
     assert (box.visible, box.truncation) == (0.5, 0.0)
+
+
+@pytest.mark.parametrize("fmt", ["mcap", "ros1"])
+def test_hand_encoded_markers_are_rosbags_bytes(fmt: str) -> None:
+    from seatwin.recording.foxglove import marker_array_bytes, vessel_marker_specs, vessel_markers
+    from seatwin.recording.messages import typestore
+
+    vessels = [("Finn", "Finn/base_link_frd", (9.5, 3.0, 2.0), False), ("Ø 7", "ø/b", (0.0, 0.0, 0.0), False)]
+    vessels.append(("milliAmpere", "milliAmpere/base_link_frd", (5.0, 2.8, 1.5), True))
+    specs = vessel_marker_specs(vessels)
+    assert [s.type for s in specs] == [1, 9, 9, 1, 9]  # a vessel of unknown size: its name only
+    store = typestore(fmt)
+    msg = vessel_markers(store, specs)
+    ref = store.serialize_ros1(msg, msg.__msgtype__) if fmt == "ros1" else store.serialize_cdr(msg, msg.__msgtype__)
+    assert marker_array_bytes(specs, ros1=fmt == "ros1") == bytes(ref)
+    assert marker_array_bytes([], ros1=fmt == "ros1") == bytes(
+        store.serialize_ros1(vessel_markers(store, []), msg.__msgtype__)
+        if fmt == "ros1"
+        else store.serialize_cdr(vessel_markers(store, []), msg.__msgtype__)
+    )
+
+
+def test_markers_once_a_second(tmp_path: Path) -> None:
+    from seatwin.scenario.builtin import builtin_scenario
+    from seatwin.sim import simulate_scenario
+
+    simulate_scenario(builtin_scenario("ferry_crossing"), tmp_path / "r", duration=2.5, sensors=("lidar",), progress=False)
+    with open_bag(tmp_path / "r") as rec:
+        times = [m.log_time_ns for m in rec.messages("/ground_truth/markers")]
+    assert len(times) == 3 and [b - a for a, b in zip(times, times[1:])] == pytest.approx([1e9, 1e9], abs=1e3)

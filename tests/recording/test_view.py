@@ -53,7 +53,7 @@ def test_a_subscribed_client_receives_the_runs_messages(run: Path) -> None:
     from seatwin.recording.convert import cdr_converter
     from seatwin.recording.view import RecordingViewer
 
-    topic = "/ground_truth/markers"
+    topic = "/ground_truth/Finn/odom"
     with open_bag(run) as rec:
         _, convert = cdr_converter(rec)
         want = [(ts, bytes(convert(d, t))) for _, t, ts, d in rec.raw_messages({topic})]
@@ -65,8 +65,8 @@ def test_a_subscribed_client_receives_the_runs_messages(run: Path) -> None:
         play = threading.Thread(target=lambda: sent.append(viewer.play(speed=0)))
         channel, got = asyncio.run(_subscribe_and_receive(port, topic, play))
         play.join()
-    assert channel["encoding"] == "cdr" and channel["schemaName"] == "visualization_msgs/msg/MarkerArray"
-    assert channel["schemaEncoding"] == "ros2msg" and "Marker[] markers" in channel["schema"]
+    assert channel["encoding"] == "cdr" and channel["schemaName"] == "nav_msgs/msg/Odometry"
+    assert channel["schemaEncoding"] == "ros2msg" and "geometry_msgs/TwistWithCovariance twist" in channel["schema"]
     assert sent == [len(viewer.messages)]
     assert got == want and len(got) == 3  # every message of the topic, as CDR, with its recorded log time
 

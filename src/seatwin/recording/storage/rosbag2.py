@@ -12,6 +12,7 @@ texts come from :func:`~seatwin.recording.storage.metadata_yaml.dump_yaml`.
 
 from __future__ import annotations
 
+import json
 import os
 from collections.abc import Sequence
 from pathlib import Path
@@ -30,7 +31,7 @@ from rosbags.interfaces import (
     QosTime,
 )
 from rosbags.rosbag2.enums import CompressionMode
-from rosbags.rosbag2.metadata import dump_qos_v8, dump_qos_v9
+from rosbags.rosbag2.metadata import dump_qos_v9
 from rosbags.typesys.store import Typestore
 
 from seatwin.defaults import DEFAULT_ROS_DISTRO, ROS_DISTROS
@@ -110,8 +111,15 @@ class Rosbag2Storage(BagStorage):
         return conn
 
     def _qos(self, qos: list[Qos]) -> str | list[Any]:
-        """``offered_qos_profiles`` as this version's metadata has it: a YAML list (9), else a YAML string."""
-        return dump_qos_v9(qos) if self.version >= 9 else dump_qos_v8(qos)
+        """``offered_qos_profiles`` as this version's metadata has it: a YAML list (9), else a YAML string of the
+        same maps with the enums as numbers (what rosbags' ``dump_qos_v8`` writes, without ruamel's cost)."""
+        profiles = dump_qos_v9(qos)
+        if self.version >= 9:
+            return profiles
+        for x, d in zip(qos, profiles):
+            d.update(history=x.history.value, reliability=x.reliability.value, durability=x.durability.value)
+            d.update(liveliness=x.liveliness.value)
+        return dump_yaml(profiles).strip() if profiles else ""
 
     def _qos_text(self, qos: list[Qos]) -> str:
         """The QoS text a storage file keeps per topic (MCAP channel metadata, SQLite3 ``topics`` row)."""
@@ -177,14 +185,39 @@ class Rosbag2Storage(BagStorage):
 
     def close(self) -> None:
         info = self.metadata()
-        self.writer.close(self.version, dump_yaml(info).strip())
+        self.writer.close(self.version, _dump_metadata(info).strip())
         self.writer = None
         meta = self.path / "metadata.yaml"
         tmp = meta.with_suffix(".yaml.tmp")
-        tmp.write_text(dump_yaml({"rosbag2_bagfile_information": info}), "utf8")
+        tmp.write_text(_dump_metadata({"rosbag2_bagfile_information": info}), "utf8")
         os.replace(tmp, meta)
 
     def abort(self) -> None:
         writer, self.writer = self.writer, None
         if writer is not None:
             writer.abort()
+
+
+def _dump_metadata(doc: dict[str, Any]) -> str:
+    """``doc`` as YAML; below version 9 each QoS *string* (several lines) goes in as a JSON string, which YAML
+    reads as a double-quoted scalar — the rest through :func:`dump_yaml`, which hands a document with such a
+    string whole to ruamel (~80 ms for a run's metadata)."""
+    strings: list[str] = []
+
+    def swap(node: Any) -> Any:
+        if isinstance(node, dict):
+            out = {}
+            for k, v in node.items():
+                if k == "offered_qos_profiles" and isinstance(v, str) and v:
+                    strings.append(v)
+                    v = f"qos_placeholder_{len(strings) - 1}"
+                out[k] = swap(v)
+            return out
+        if isinstance(node, list):
+            return [swap(x) for x in node]
+        return node
+
+    text = dump_yaml(swap(doc))
+    for i in reversed(range(len(strings))):  # placeholder 1 before 10 would match a prefix of it
+        text = text.replace(f"qos_placeholder_{i}", json.dumps(strings[i]))
+    return text
