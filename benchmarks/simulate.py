@@ -6,7 +6,8 @@ the same sweeps computed without recording (so the recording cost shows as a rat
 ``recording_s`` is the time spent in the recording writer (of which ``recording_serialize_s``
 encoding messages and ``recording_write_s`` handing them to the bag, flushes included);
 ``recording_share`` = recording_s / wall_s (target ≤ 0.10).
-Prints JSON on its last line. Usage: python benchmarks/simulate.py [--duration S] [--preset NAME]
+Prints JSON on its last line. Usage: python benchmarks/simulate.py [--duration S] [--preset NAME] [--sensors LIST]
+(``--sensors`` default ``lidar``, this benchmark's subject; ``lidar,camera`` is simulate's default run).
 """
 
 from __future__ import annotations
@@ -28,12 +29,19 @@ def main() -> None:
     ap.add_argument("--scenario", default="ferry_crossing")
     ap.add_argument("--duration", type=float, default=30.0)
     ap.add_argument("--preset", default="vlp16-thesis")
+    ap.add_argument("--sensors", default="lidar")
     ap.add_argument("--lidar-mode", default="raycast")
     args = ap.parse_args()
     sc = builtin_scenario(args.scenario)
     with tempfile.TemporaryDirectory() as tmp:
         res = simulate_scenario(
-            sc, Path(tmp) / "run", duration=args.duration, lidar_preset=args.preset, lidar_mode=args.lidar_mode, progress=False
+            sc,
+            Path(tmp) / "run",
+            duration=args.duration,
+            lidar_preset=args.preset,
+            lidar_mode=args.lidar_mode,
+            sensors=tuple(args.sensors.split(",")),
+            progress=False,
         )
         size = sum(p.stat().st_size for p in (Path(tmp) / "run").rglob("*") if p.is_file())
         parts = json.loads((Path(tmp) / "run" / "manifest.json").read_text())["recording_time_s"]

@@ -101,3 +101,105 @@ def test_cosim_cli_one_command_and_export(tmp_path, capsys):
     assert run(["cosim", "export", "ferry_crossing", "--out", str(tmp_path / "x"), "--step", "0"]) == 2
     assert "--step" in capsys.readouterr().err
     assert run(["cosim", "run", str(tmp_path / "nothing.xml"), "--out", str(tmp_path / "y")]) == 2
+
+
+@pytest.fixture(scope="module")
+def exported(tmp_path_factory):
+    pytest.importorskip("pythonfmu")
+    sc = builtin_scenario("ferry_crossing")
+    return sc, export_system(sc, tmp_path_factory.mktemp("sys"))
+
+
+def test_exported_fmus_pass_fmpy_validation(exported):
+    validation = pytest.importorskip("fmpy.validation", reason="FMPy (the `test` extra) is not installed")
+    _, paths = exported
+    for fmu in (paths["player"], paths["bridge"]):
+        assert validation.validate_fmu(str(fmu)) == [], fmu.name
+
+
+def test_player_outputs_start_exactly_at_the_scenarios_first_pose(exported):
+    import zipfile
+
+    sc, paths = exported
+    with zipfile.ZipFile(paths["player"]) as z:
+        root = ET.fromstring(z.read("modelDescription.xml"))
+    start = {}
+    for v in root.iter("ScalarVariable"):
+        assert v.get("causality") == "output" and v.get("initial") == "exact", v.get("name")
+        start[v.get("name")] = float(v.find("Real").get("start"))
+    assert start["start_time"] == sc.start
+    assert root.find("ModelStructure/InitialUnknowns") is None
+    for v in sc.vessels:
+        s = sc.state_at(v.name, sc.start)
+        assert [start[f"{v.name}.{q}"] for q in ("north", "east")] == pytest.approx([s.north, s.east], abs=1e-9)
+        assert start[f"{v.name}.heading"] == pytest.approx(math.degrees(s.heading) % 360.0, abs=1e-9)
+
+
+def _cli_default(command: list[str], option: str):
+    import click
+    import typer
+
+    from seatwin.cli.main import app
+
+    cmd = typer.main.get_command(app)
+    ctx = click.Context(cmd)
+    for name in command:
+        cmd = cmd.get_command(ctx, name)
+    return next(p.default for p in cmd.params if option in p.opts)
+
+
+def test_one_default_sensor_set_for_every_entry_point():
+    import inspect
+
+    from seatwin.api.lockstep import LockstepSettings
+    from seatwin.cosim.osp import export_system
+    from seatwin.defaults import DEFAULT_SENSORS
+    from seatwin.sim.settings import SimulationSettings
+
+    assert DEFAULT_SENSORS == ("lidar", "camera")  # the thesis's twin
+    assert SimulationSettings().sensors == LockstepSettings().sensors == DEFAULT_SENSORS
+    assert inspect.signature(export_system).parameters["sensors"].default == DEFAULT_SENSORS
+    for command in (["simulate"], ["serve"], ["cosim", "export"]):
+        assert _cli_default(command, "--sensors") == ",".join(DEFAULT_SENSORS), command
+    assert _cli_default(["cosim", "run"], "--sensors") is None  # the exported system's (DEFAULT_SENSORS for a scenario)
+
+
+def test_export_writes_the_harbour_and_sensors_that_run_serves_with(tmp_path, monkeypatch):
+    pytest.importorskip("pythonfmu")
+    import dataclasses
+
+    sc = builtin_scenario("ferry_crossing")
+    gemini_like = dataclasses.replace(sc, environment={**sc.environment, "harbour": "ravnkloa"})  # a Gemini CSV's harbour
+    meta = json.loads(export_system(gemini_like, tmp_path / "a")["meta"].read_text())
+    assert meta["harbour"] == "ravnkloa" and meta["sensors"] == ["lidar", "camera"]
+    meta = json.loads(export_system(gemini_like, tmp_path / "b", harbour="none", sensors=("lidar", "radar"))["meta"].read_text())
+    assert meta["harbour"] == "none" and meta["sensors"] == ["lidar", "radar"]
+    from seatwin.errors import ParameterError
+
+    with pytest.raises(ParameterError) as exc:
+        export_system(sc, tmp_path / "c", sensors=("sonar",))
+    assert exc.value.param == "sensors"
+    with pytest.raises(ParameterError) as exc:
+        export_system(sc, tmp_path / "d", harbour="atlantis")
+    assert exc.value.param == "harbour"
+
+
+@pytest.mark.slow
+def test_cosim_plays_a_gemini_csv_in_ravnkloa_as_simulate_does(tmp_path, shared_data):
+    """The issue's measurement: 510 points per cloud in the default harbour against simulate's 207 in Ravnkloa."""
+    pytest.importorskip("libcosimpy")
+    from seatwin.cli.main import run
+    from seatwin.pipeline.simulate import simulate_run
+
+    csv = shared_data / "gemini-scenarios" / "Scenario6.csv"
+    args = ["--duration", "0.5", "--sensors", "lidar", "--seed", "3"]
+    assert run(["cosim", "run", str(csv), "--out", str(tmp_path / "c"), *args]) == 0
+    simulate_run(csv, tmp_path / "s", duration=0.5, sensors=("lidar",), seed=3, progress=False)
+    counts = {}
+    for name in ("c", "s"):
+        assert json.loads((tmp_path / name / "manifest.json").read_text())["metadata"]["harbour"] == "ravnkloa"
+        with open_bag(tmp_path / name) as bag:
+            counts[name] = [len(c.points) for c in bag.point_clouds("/lidar/points")]
+    assert len(counts["c"]) == len(counts["s"]) == 5
+    # the served poses are float32 (millimetres): the clouds' sizes agree to a few points
+    np.testing.assert_allclose(counts["c"], counts["s"], rtol=0.05)

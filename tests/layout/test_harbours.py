@@ -134,7 +134,7 @@ def test_a_run_records_the_harbour_it_was_simulated_in(shared_data, tmp_path) ->
     from seatwin.sim import simulate_scenario
 
     sc = load_scenario(shared_data / "gemini-scenarios" / "Scenario6.csv")
-    simulate_scenario(sc, tmp_path / "r", duration=0.3, progress=False, lidar_preset="vlp16-thesis")
+    simulate_scenario(sc, tmp_path / "r", duration=0.3, progress=False, lidar_preset="vlp16-thesis", sensors=("lidar",))
     meta = json.loads((tmp_path / "r" / "manifest.json").read_text())["metadata"]
     assert meta["harbour"] == "ravnkloa" and meta["tracking"]["map"] == "ravnkloa"  # by name: the run stays portable
     from seatwin.perception.map_mask import RasterMask
@@ -142,7 +142,9 @@ def test_a_run_records_the_harbour_it_was_simulated_in(shared_data, tmp_path) ->
 
     assert isinstance(recording_mask(tmp_path / "r"), RasterMask)
     assert yaml.safe_load((tmp_path / "r" / "scenario.yaml").read_text())["environment"]["harbour"] == "ravnkloa"
-    simulate_scenario(sc, tmp_path / "d", duration=0.3, progress=False, lidar_preset="vlp16-thesis", harbour="default")
+    simulate_scenario(
+        sc, tmp_path / "d", duration=0.3, progress=False, lidar_preset="vlp16-thesis", harbour="default", sensors=("lidar",)
+    )
     meta = json.loads((tmp_path / "d" / "manifest.json").read_text())["metadata"]
     assert meta["harbour"] == "default" and meta["tracking"]["map"] == "harbour"
     assert yaml.safe_load((tmp_path / "d" / "scenario.yaml").read_text())["environment"]["harbour"] == "default"

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 from recording_helpers import T0
 
+from seatwin.defaults import ROS_DISTROS
 from seatwin.recording import open_bag
 from seatwin.recording.messages import typestore
 from seatwin.recording.storage import STORAGES, BagStorage, bag_path, open_storage
@@ -45,8 +46,15 @@ def _script() -> list[tuple[str, int, bytes]]:
     return steps
 
 
-def _ours(fmt: str, path: Path) -> None:
-    st = open_storage(fmt, path, typestore(fmt))
+@pytest.fixture
+def as_rosbags(monkeypatch: pytest.MonkeyPatch) -> str:
+    """A distribution named as rosbags' writer names every bag (version 9): for byte-for-byte comparisons."""
+    monkeypatch.setitem(ROS_DISTROS, "rosbags", 9)
+    return "rosbags"
+
+
+def _ours(fmt: str, path: Path, ros_distro: str = "jazzy") -> None:
+    st = open_storage(fmt, path, typestore(fmt), ros_distro=ros_distro)
     conns = {}
     for step in _script():
         if step[0] == "add":
@@ -88,17 +96,17 @@ def test_one_interface_per_format() -> None:
     assert bag_path(Path("run"), "mcap") == Path("run/recording")
 
 
-def test_mcap_byte_identical_to_rosbags(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_mcap_byte_identical_to_rosbags(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, as_rosbags: str) -> None:
     monkeypatch.setattr(LeanMcapWriter, "DIRECT_BYTES", None)  # the buffered path only
-    _ours("mcap", tmp_path / "ours" / "bag")
+    _ours("mcap", tmp_path / "ours" / "bag", as_rosbags)
     _rosbags("mcap", tmp_path / "theirs" / "bag")
     ours, theirs = ((tmp_path / d / "bag" / "bag.mcap").read_bytes() for d in ("ours", "theirs"))
     assert len(ours) > 5_000_000 and ours == theirs
     assert (tmp_path / "ours/bag/metadata.yaml").read_text() == (tmp_path / "theirs/bag/metadata.yaml").read_text()
 
 
-def test_sqlite3_identical_to_rosbags(tmp_path: Path) -> None:
-    _ours("sqlite3", tmp_path / "ours" / "bag")
+def test_sqlite3_identical_to_rosbags(tmp_path: Path, as_rosbags: str) -> None:
+    _ours("sqlite3", tmp_path / "ours" / "bag", as_rosbags)
     _rosbags("sqlite3", tmp_path / "theirs" / "bag")
     dumps = []
     for d in ("ours", "theirs"):
@@ -262,3 +270,51 @@ def test_write_many_same_bag_as_one_by_one(tmp_path: Path, fmt: str) -> None:
         data = path.read_bytes() if fmt == "ros1" else (path / f"bag.{'mcap' if fmt == 'mcap' else 'db3'}").read_bytes()
         files.append(data)
     assert len(files[0]) > 1_000_000 and files[0] == files[1]
+
+
+# what each ROS 2 distribution's rosbag2 decodes (yaml.hpp on the humble, iron and jazzy branches)
+_REQUIRED = {"version", "storage_identifier", "duration", "starting_time", "message_count", "topics_with_message_count"}
+_SINCE = {"relative_file_paths": 0, "compression_format": 3, "compression_mode": 3, "files": 5, "custom_data": 6, "ros_distro": 8}
+
+
+@pytest.mark.parametrize(("distro", "version"), [("humble", 5), ("iron", 7), ("jazzy", 9), ("kilted", 9)])
+@pytest.mark.parametrize("fmt", ["mcap", "sqlite3"])
+def test_metadata_in_the_distros_version(tmp_path: Path, fmt: str, distro: str, version: int) -> None:
+    """Each version has the fields rosbag2 decodes for it; QoS a string of numeric enums below 9 (what Humble's
+    ``as<std::string>()`` and its QoS parser read), a list from 9; the bag says which distro it is for."""
+    import yaml
+    from rosbags.highlevel import AnyReader
+
+    _ours(fmt, tmp_path / "bag", distro)
+    info = yaml.safe_load((tmp_path / "bag" / "metadata.yaml").read_text())["rosbag2_bagfile_information"]
+    assert info["version"] == version and info["ros_distro"] == distro
+    assert set(info) >= _REQUIRED and all(k in info for k, v in _SINCE.items() if v <= version)
+    assert ("custom_data" in info) == (version >= 6)
+    for t in info["topics_with_message_count"]:
+        meta = t["topic_metadata"]
+        assert ("type_description_hash" in meta) == (version >= 7)
+        qos = meta["offered_qos_profiles"]
+        if version >= 9:
+            assert isinstance(qos, list)
+        else:
+            assert isinstance(qos, str)
+            if meta["name"] == "/tf_static":
+                (profile,) = yaml.safe_load(qos)
+                assert profile["durability"] == 1 and profile["reliability"] == 1 and profile["depth"] == 1  # transient local
+    if fmt == "sqlite3":
+        con = sqlite3.connect(tmp_path / "bag" / "bag.db3")
+        assert con.execute("SELECT ros_distro FROM schema").fetchall() == [(distro,)]
+        con.close()
+    with AnyReader([tmp_path / "bag"]) as r:
+        assert r.message_count == 122
+        latched = [c for c in r.connections if c.topic == "/tf_static"]
+        assert latched[0].ext.offered_qos_profiles[0].durability.name == "TRANSIENT_LOCAL"
+
+
+def test_unknown_distro_is_refused(tmp_path: Path) -> None:
+    from seatwin.errors import ParameterError
+
+    with pytest.raises(ParameterError) as exc:
+        open_storage("mcap", tmp_path / "bag", typestore("mcap"), ros_distro="rolling")
+    assert exc.value.param == "ros_distro" and "humble" in str(exc.value)
+    assert not (tmp_path / "bag").exists()

@@ -66,7 +66,7 @@ def test_frame_times_are_relative_to_the_start():
 
 
 def test_recording_contents(tmp_path, scenario):
-    res = simulate_scenario(scenario, tmp_path / "r", duration=1.0, progress=False)
+    res = simulate_scenario(scenario, tmp_path / "r", duration=1.0, progress=False, sensors=("lidar",))
     assert res.completed and res.frames == {"ground_truth": 10, "lidar": 10}
     manifest = json.loads((tmp_path / "r" / "manifest.json").read_text())
     assert manifest["completed"] is True and manifest["seed"] == scenario.seed
@@ -90,7 +90,7 @@ def test_recording_contents(tmp_path, scenario):
 
 def test_same_seed_bit_identical_other_seed_changes_only_random_parts(tmp_path, scenario):
     for name, seed in (("a", 7), ("b", 7), ("c", 8)):
-        simulate_scenario(scenario, tmp_path / name, duration=0.5, seed=seed, progress=False)
+        simulate_scenario(scenario, tmp_path / name, duration=0.5, seed=seed, progress=False, sensors=("lidar",))
     a, b, c = (_payloads(tmp_path / n) for n in "abc")
     assert a == b
     assert a["/lidar/points"] != c["/lidar/points"]
@@ -101,7 +101,7 @@ def test_same_seed_bit_identical_other_seed_changes_only_random_parts(tmp_path, 
 
 def test_formats(tmp_path, scenario):
     for fmt in ("sqlite3", "ros1"):
-        simulate_scenario(scenario, tmp_path / fmt, duration=0.3, fmt=fmt, progress=False)
+        simulate_scenario(scenario, tmp_path / fmt, duration=0.3, fmt=fmt, progress=False, sensors=("lidar",))
         with open_bag(tmp_path / fmt) as bag:
             assert len(list(bag.point_clouds())) == 3
 
@@ -179,7 +179,7 @@ def test_every_published_scenario_runs_to_its_end(tmp_path, shared_data, name):
     from seatwin.scenario.load import load_scenario
 
     sc = load_scenario(shared_data / "gemini-scenarios" / f"{name}.csv")
-    res = simulate_scenario(sc, tmp_path / name, progress=False, lidar_preset="vlp16-thesis")
+    res = simulate_scenario(sc, tmp_path / name, progress=False, lidar_preset="vlp16-thesis", sensors=("lidar",))
     assert res.completed
     expected = math.ceil((sc.end - sc.start) * 10.0 - 1e-5)  # frames at 0, 0.1, … < span
     assert res.frames["lidar"] == res.frames["ground_truth"] == expected

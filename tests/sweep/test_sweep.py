@@ -95,7 +95,14 @@ def test_biased_mount_is_simulated_but_nominal_mount_recorded(tmp_path):
     from seatwin.scenario.builtin import builtin_scenario
     from seatwin.sim import simulate_scenario
 
-    simulate_scenario(builtin_scenario("ferry_crossing"), tmp_path / "r", duration=0.3, mount_yaw_bias_deg=5.0, progress=False)
+    simulate_scenario(
+        builtin_scenario("ferry_crossing"),
+        tmp_path / "r",
+        duration=0.3,
+        mount_yaw_bias_deg=5.0,
+        progress=False,
+        sensors=("lidar",),
+    )
     with open_bag(tmp_path / "r") as rec:
         st = [s for s in rec.static_transforms() if s.child == "lidar"]
         sensors = (rec.manifest or {}).get("sensors")

@@ -40,6 +40,7 @@ from numpy.typing import NDArray
 from pydantic import Field, field_validator
 
 from seatwin.api.live import LiveGroundTruth, LiveTracks
+from seatwin.defaults import DEFAULT_SENSORS
 from seatwin.errors import InputError, ParameterError
 from seatwin.layout.harbours import check_harbour_spec
 from seatwin.recording.manifest import MANIFEST_NAME
@@ -72,7 +73,7 @@ class LockstepSettings(Settings):
     )
     ownship: str | None = Field(OWNSHIP_NAME, description="The vessel carrying the sensors (one of vessels; None: no sensors).")
     sensors: tuple[Literal["lidar", "radar", "camera"], ...] = Field(
-        ("lidar",), description="Ownship sensors (empty: ground truth only); ground truth is always recorded."
+        DEFAULT_SENSORS, description="Ownship sensors (empty: ground truth only); ground truth is always recorded."
     )
     seed: int = Field(0, description="Seed of every random draw.")
     lidar_mode: Literal["raycast", "depthbuffer", "depthbuffer-legacy", "depthbuffer-plane"] = Field(

@@ -90,7 +90,8 @@ def simulate_and_track(params: dict[str, Any], work: Path) -> tuple[Any, dict[st
         duration=params["duration"],
         progress=False,
         seed=params["seed"],
-        **params["settings"],
+        # the tracker reads lidar and radar by default: no camera rig (the entry points' default) unless the settings ask
+        **{"sensors": ("lidar",), **params["settings"]},
     )
     if not result.completed:  # Ctrl-C or SIGTERM in this process: the job did not run, it must not be recorded as if it had
         from seatwin.interrupts import Interrupted

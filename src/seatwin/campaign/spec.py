@@ -12,7 +12,8 @@ Example (docs/examples/campaign.yaml)::
 ``synthetic`` and ``reference`` name fields of :class:`seatwin.sim.SimulationSettings` (``lidar_mode``,
 ``ray_drop``, ``range_noise``, ``dissipation``, ``sensors``, ``harbour``…); ``synthetic`` lists values
 per field and the campaign runs every combination, ``reference`` gives one value per field (unnamed
-fields keep their defaults). The reference run of seed ``s`` uses seed ``s + reference_seed_offset``:
+fields keep their defaults, but ``sensors`` is ``lidar`` unless named: the tracker reads no images). The
+reference run of seed ``s`` uses seed ``s + reference_seed_offset``:
 a real dataset never shares the synthetic one's random draws, so neither may the reference that
 stands in for it (sharing them would hide the seed-to-seed difference every real comparison has).
 """

@@ -7,6 +7,7 @@ from pathlib import Path
 import typer
 
 from seatwin.cli.output import overwrite_option
+from seatwin.cli.simulate import DEFAULT_DISTRO, ROS_DISTRO_HELP, BagFormat, RosDistro
 
 
 def register(app: typer.Typer) -> None:
@@ -49,3 +50,23 @@ def register(app: typer.Typer) -> None:
         how = "was finished already; rewritten" if result.was_finished else "repaired"
         lost = "; the scan stopped at a damaged record (what follows it is lost)" if result.truncated else ""
         typer.echo(f"{result.format} bag {how}: {result.messages} messages on {len(result.topics)} topics in {result.bag}{lost}")
+
+    @bag_app.command("convert")
+    def convert(
+        src: Path = typer.Argument(..., help="A run directory, a rosbag2 directory, or a .mcap, .db3 or .bag file."),
+        out: Path = typer.Option(..., "--out", help="New path: a run directory for a run, else the bag (a .bag file for ros1)."),
+        fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Format of the new bag."),
+        ros_distro: RosDistro = typer.Option(DEFAULT_DISTRO, "--ros-distro", help=ROS_DISTRO_HELP),
+        overwrite: bool = overwrite_option(),
+    ) -> None:
+        """Write a bag in another format (MCAP, SQLite3, ROS 1) or for another ROS 2 distribution's metadata version.
+
+        Every message is kept with its log time; a run directory becomes a run directory (scenario and
+        manifest copied) that every seatwin command reads as the original.
+        """
+        from seatwin.recording.convert import convert_bag
+
+        result = convert_bag(src, out, fmt=fmt.value, ros_distro=ros_distro.value, overwrite=overwrite)
+        distro = f" for ROS 2 {result.ros_distro}" if result.ros_distro else ""
+        n = sum(result.counts.values())
+        typer.echo(f"wrote {n} messages on {len(result.counts)} topics as {result.format}{distro}: {result.bag}")

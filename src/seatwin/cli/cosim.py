@@ -8,6 +8,20 @@ import typer
 
 from seatwin.cli.output import overwrite_option
 from seatwin.cli.simulate import BagFormat, LidarMode
+from seatwin.defaults import DEFAULT_SENSORS
+
+HARBOUR_HELP = (
+    "Harbour instead of the scenario's own (a Gemini CSV's: ravnkloa; a built-in's: default), as `simulate`: 'default', "
+    "'ravnkloa', 'none' or a land raster .bin/.yaml."
+)
+SENSORS_HELP = "Comma-separated ownship sensors: lidar, radar, camera; 'none' for ground truth only."
+
+
+def _sensors(text: str | None) -> tuple[str, ...] | None:
+    from seatwin.cli.output import split_list
+
+    names = split_list(text, "sensors")
+    return () if names == ("none",) else names
 
 
 def register(app: typer.Typer) -> None:
@@ -24,9 +38,14 @@ def register(app: typer.Typer) -> None:
         out: Path = typer.Option(..., "--out", help="Folder for the FMUs, OspSystemStructure.xml and seatwin-cosim.json."),
         step: float = typer.Option(0.1, "--step", help="Fixed co-simulation step [s]."),
         date: str | None = typer.Option(None, "--date", help="UTC date YYYY-MM-DD of a TimeOfDay CSV."),
+        harbour: str | None = typer.Option(None, "--harbour", help=HARBOUR_HELP),
+        sensors: str = typer.Option(",".join(DEFAULT_SENSORS), "--sensors", metavar="LIST", help=SENSORS_HELP),
         overwrite: bool = overwrite_option(),
     ) -> None:
-        """Write ScenarioPlayer.fmu (the scenario, embedded), GeminiBridge.fmu and a ready OspSystemStructure.xml."""
+        """Write ScenarioPlayer.fmu (the scenario, embedded), GeminiBridge.fmu and a ready OspSystemStructure.xml.
+
+        The harbour and sensors go into seatwin-cosim.json: `cosim run` serves with them unless told otherwise.
+        """
         from seatwin.cli.scenario import _date
         from seatwin.cosim.osp import EXPORT_FILES, export_system
         from seatwin.outputs import check_output_folder
@@ -34,7 +53,7 @@ def register(app: typer.Typer) -> None:
 
         sc = load_scenario(scenario, date=_date(date))
         check_output_folder(out, "out", EXPORT_FILES, inputs=[scenario, *sc.files], overwrite=overwrite)
-        paths = export_system(sc, out, step_size=step)
+        paths = export_system(sc, out, step_size=step, harbour=harbour, sensors=_sensors(sensors) or ())
         typer.echo(f"wrote {', '.join(p.name for p in paths.values())} into {out}")
 
     @cosim_app.command("run")
@@ -47,7 +66,13 @@ def register(app: typer.Typer) -> None:
         out: Path = typer.Option(..., "--out", help="New run directory to record into."),
         duration: float | None = typer.Option(None, "--duration", help="Simulated seconds (default: the scenario's)."),
         seed: int | None = typer.Option(None, "--seed", help="Seed of every random draw (default: the scenario's)."),
-        sensors: str = typer.Option("lidar", "--sensors", metavar="LIST", help="Ownship sensors: lidar, radar; 'none'."),
+        sensors: str | None = typer.Option(
+            None,
+            "--sensors",
+            metavar="LIST",
+            help=SENSORS_HELP + f" Default: the exported system's ({','.join(DEFAULT_SENSORS)} for a scenario).",
+        ),
+        harbour: str | None = typer.Option(None, "--harbour", help=HARBOUR_HELP + " Default: the exported system's."),
         lidar_mode: LidarMode = typer.Option(LidarMode.raycast, "--lidar-mode", help="Lidar range model."),
         fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Bag format."),
         step: float = typer.Option(0.1, "--step", help="Fixed step [s] when given a scenario."),
@@ -58,24 +83,27 @@ def register(app: typer.Typer) -> None:
 
         Given a scenario instead of a system, export it first (the one command: scenario → FMUs → libcosim → bag).
         """
-        from seatwin.cli.output import split_list
         from seatwin.cli.scenario import _date
         from seatwin.cosim.osp import export_system, run_system
         from seatwin.outputs import remove_outputs
         from seatwin.recording.manifest import check_new_run
         from seatwin.scenario.load import load_scenario
 
-        names = split_list(sensors, "sensors") or ()
+        names = _sensors(sensors)
         path = Path(system)
         remove_outputs(check_new_run(out, "out", inputs=[system], overwrite=overwrite, extra=("cosim",)))
         if path.suffix.lower() != ".xml":
-            path = export_system(load_scenario(system, date=_date(date)), out / "cosim", step_size=step)["system"]
+            sc = load_scenario(system, date=_date(date))
+            kw = {} if names is None else {"sensors": names}
+            path = export_system(sc, out / "cosim", step_size=step, harbour=harbour, **kw)["system"]
+            names, harbour = None, None  # as exported (the harbour resolved against the scenario)
         result = run_system(
             path,
             out,
             duration=duration,
             seed=seed,
-            sensors=() if names == ("none",) else names,
+            sensors=names,
+            harbour=harbour,
             lidar_mode=lidar_mode.value,
             fmt=fmt.value,
         )

@@ -52,6 +52,7 @@ COMMAND_MODULES: list[str] = [
     "record_stream",
     "cosim",
     "harbour",
+    "view",
 ]
 
 

@@ -8,6 +8,7 @@ import typer
 
 from seatwin.cli.output import overwrite_option
 from seatwin.cli.simulate import BagFormat, LidarMode
+from seatwin.defaults import DEFAULT_SENSORS
 
 
 def register(app: typer.Typer) -> None:
@@ -22,7 +23,7 @@ def register(app: typer.Typer) -> None:
         ),
         ownship: str = typer.Option("milliAmpere", "--ownship", help="The vessel carrying the sensors."),
         sensors: str = typer.Option(
-            "lidar",
+            ",".join(DEFAULT_SENSORS),
             "--sensors",
             metavar="LIST",
             help="Comma-separated ownship sensors: lidar, radar, camera; 'none' for ground truth only.",

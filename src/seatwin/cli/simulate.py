@@ -8,6 +8,7 @@ from pathlib import Path
 import typer
 
 from seatwin.cli.output import overwrite_option
+from seatwin.defaults import DEFAULT_ROS_DISTRO, DEFAULT_SENSORS, ROS_DISTROS
 
 
 class LidarMode(str, Enum):
@@ -21,6 +22,15 @@ class BagFormat(str, Enum):
     mcap = "mcap"
     sqlite3 = "sqlite3"
     ros1 = "ros1"
+
+
+RosDistro = Enum("RosDistro", {d: d for d in ROS_DISTROS}, type=str)  # type: ignore[misc]
+DEFAULT_DISTRO = RosDistro(DEFAULT_ROS_DISTRO)
+ROS_DISTRO_HELP = (
+    "ROS 2 distribution the rosbag2 metadata (mcap, sqlite3) is written for: "
+    + ", ".join(f"{d} {v}" for d, v in ROS_DISTROS.items())
+    + "; a distro reads its own version and older ones."
+)
 
 
 def register(app: typer.Typer) -> None:
@@ -50,9 +60,10 @@ def register(app: typer.Typer) -> None:
         range_noise: float | None = typer.Option(None, "--range-noise", help="Range noise σ in metres (default 0.015)."),
         dissipation: bool = typer.Option(False, "--dissipation", help="Range-dependent return probability."),
         fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Bag format."),
+        ros_distro: RosDistro = typer.Option(DEFAULT_DISTRO, "--ros-distro", help=ROS_DISTRO_HELP),
         date: str | None = typer.Option(None, "--date", help="UTC date YYYY-MM-DD of a TimeOfDay CSV."),
         sensors: str = typer.Option(
-            "lidar,camera",
+            ",".join(DEFAULT_SENSORS),
             "--sensors",
             metavar="LIST",
             help="Comma-separated ownship sensors: lidar, radar, camera (the thesis's twin: lidar and the three cameras).",
@@ -104,6 +115,7 @@ def register(app: typer.Typer) -> None:
             range_noise=range_noise,
             dissipation=dissipation,
             fmt=fmt.value,
+            ros_distro=ros_distro.value,
             radar_config=radar,
             radar_spokes=streamer is not None,
             camera_hfov_deg=camera_hfov,

@@ -4,7 +4,9 @@ structure, and running it with ``libcosimpy`` against ``seatwin serve``.
 :func:`export_system` writes ``ScenarioPlayer.fmu`` (a scenario played step by step: every vessel's
 north, east, heading), ``GeminiBridge.fmu`` (those poses sent to a ``Simulation`` server with
 ``DoStep``), ``OspSystemStructure.xml`` connecting them (``<Algorithm>fixedStep</Algorithm>``) and
-``seatwin-cosim.json`` (vessel order, ownship, duration: what ``seatwin cosim run`` needs to serve).
+``seatwin-cosim.json`` (vessel order, ownship, duration, harbour, sensors: what ``seatwin cosim run`` needs to
+serve; the harbour and sensors are ``seatwin simulate``'s: the scenario's own harbour — a Gemini CSV's is
+``ravnkloa`` — and :data:`~seatwin.defaults.DEFAULT_SENSORS`, unless given).
 :func:`run_system` starts the ``Simulation`` server in-process, points the bridge at it, and runs the
 system with libcosim's fixed-step algorithm until the scenario's end (libcosim times are integer ns).
 """
@@ -21,8 +23,11 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
+from seatwin.defaults import DEFAULT_SENSORS
 from seatwin.errors import InputError, ParameterError
 from seatwin.scenario import Scenario
+from seatwin.settings import validated
+from seatwin.sim.settings import SimulationSettings
 
 FMU_SOURCES = Path(__file__).parent / "fmus"
 SYSTEM_FILE = "OspSystemStructure.xml"
@@ -84,11 +89,26 @@ def system_structure(vessels: list[str], step_size: float) -> str:
 
 
 def export_system(
-    scenario: Scenario, out_dir: str | Path, *, step_size: float = 0.1, address: str = "127.0.0.1:50051"
+    scenario: Scenario,
+    out_dir: str | Path,
+    *,
+    step_size: float = 0.1,
+    address: str = "127.0.0.1:50051",
+    harbour: str | None = None,
+    sensors: tuple[str, ...] = DEFAULT_SENSORS,
 ) -> dict[str, Path]:
-    """Write the two FMUs, ``OspSystemStructure.xml`` and ``seatwin-cosim.json`` for ``scenario`` into ``out_dir``."""
+    """Write the two FMUs, ``OspSystemStructure.xml`` and ``seatwin-cosim.json`` for ``scenario`` into ``out_dir``.
+
+    ``harbour`` (default: the scenario's own, as ``seatwin simulate``) and ``sensors`` are what ``cosim run``
+    serves with unless it is told otherwise."""
+    from seatwin.sim.run import run_harbour
+
     if not 0 < step_size <= scenario.duration:
         raise ParameterError("step_size", f"expected a step in (0, {scenario.duration:g}] s, got {step_size!r}")
+    settings = validated(SimulationSettings, {"harbour": harbour})
+    if sensors:  # () is ground truth only, as `serve`'s
+        settings = validated(SimulationSettings, {"harbour": harbour, "sensors": tuple(sensors)})
+    run_harbour_name = run_harbour(scenario, settings)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     names = [v.name for v in scenario.vessels]
@@ -118,6 +138,8 @@ def export_system(
                 "start": scenario.start,
                 "duration": scenario.duration,
                 "step_size": step_size,
+                "harbour": run_harbour_name,
+                "sensors": list(sensors),
             },
             indent=2,
         ),
@@ -139,12 +161,16 @@ def run_system(
     *,
     duration: float | None = None,
     seed: int | None = None,
-    sensors: tuple[str, ...] = ("lidar",),
+    sensors: tuple[str, ...] | None = None,
+    harbour: str | None = None,
     lidar_mode: str = "raycast",
     fmt: str = "mcap",
 ) -> Any:
     """Run an exported system (:func:`export_system`) with libcosim against an in-process ``seatwin serve``
     recording into ``out``; return the server's :class:`~seatwin.sim.loop.SimulationResult`.
+
+    ``sensors`` (``()``: ground truth only) and ``harbour`` default to those the export wrote into
+    ``seatwin-cosim.json`` (a file without them: :data:`~seatwin.defaults.DEFAULT_SENSORS` and ``default``).
 
     ``duration`` (default: the scenario's) is rounded down to whole steps ``h``; libcosim runs one step
     past it, so the bridge sends the poses at 0, h, …, duration and the recording holds the frames
@@ -176,7 +202,8 @@ def run_system(
         vessels=tuple(meta["vessels"]),
         ownship=meta.get("ownship"),
         seed=int(meta.get("seed", 0) if seed is None else seed),
-        sensors=tuple(sensors),
+        sensors=tuple(meta.get("sensors", DEFAULT_SENSORS) if sensors is None else sensors),
+        harbour=str(meta.get("harbour", "default") if harbour is None else harbour),
         lidar_mode=lidar_mode,
         fmt=fmt,
     )

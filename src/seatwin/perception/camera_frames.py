@@ -121,30 +121,51 @@ class LabelBox:
     truncation: float
 
 
-def label_boxes(arr: Any) -> list[LabelBox]:
-    """The boxes of a ``vision_msgs/Detection2DArray`` of the labels topic (``results``: ``vessel`` =
-    visible fraction, ``truncation``)."""
+Visibility = dict[str, tuple[float, float]]
+"""instance → (visible fraction, truncation) of one labels message."""
+
+
+def label_visibility(rec: Any, label_topics: list[str]) -> dict[tuple[str, int], Visibility]:
+    """(labels topic, header stamp ns) → each box's visible fraction and truncation, from the
+    ``foxglove_msgs/ImageAnnotations`` beside the labels (``/camera/<name>/annotations``: each box's
+    ``metadata``). Empty for recordings made before the annotations, whose labels carry both as hypotheses."""
+    beside = {camera_prefix(t) + "/annotations": t for t in label_topics}
+    beside = {a: t for a, t in beside.items() if a in rec.topics}
+    out: dict[tuple[str, int], Visibility] = {}
+    for m in rec.messages(sorted(beside)) if beside else ():
+        stamp = int(m.msg.timestamp.sec) * 1_000_000_000 + int(m.msg.timestamp.nanosec)
+        vis: Visibility = {}
+        for box in m.msg.points:
+            meta = {kv.key: kv.value for kv in box.metadata}
+            try:
+                vis[meta["instance"]] = (float(meta["visible_fraction"]), float(meta["truncation"]))
+            except (KeyError, ValueError):
+                what = f"an annotation at {stamp} ns lacks its instance, visible_fraction or truncation"
+                raise InputError(rec.bag, what, where=m.topic) from None
+        out[(beside[m.topic], stamp)] = vis
+    return out
+
+
+def label_boxes(arr: Any, visibility: Visibility | None = None) -> list[LabelBox]:
+    """The boxes of a ``vision_msgs/Detection2DArray`` of the labels topic, with each box's visible fraction and
+    truncation from ``visibility`` (:func:`label_visibility`); without it, as recordings made before the
+    annotations carried them: hypotheses ``vessel`` = visible fraction and ``truncation``."""
     boxes = []
     for d in arr.detections:
-        scores = {r.hypothesis.class_id: float(r.hypothesis.score) for r in d.results}
         b = d.bbox
-        boxes.append(
-            LabelBox(
-                d.id,
-                float(b.center.position.x),
-                float(b.center.position.y),
-                float(b.size_x),
-                float(b.size_y),
-                scores.get("vessel", 1.0),
-                scores.get("truncation", 0.0),
-            )
-        )
+        if visibility is not None and d.id in visibility:
+            visible, truncation = visibility[d.id]
+        else:
+            scores = {r.hypothesis.class_id: float(r.hypothesis.score) for r in d.results}
+            visible, truncation = scores.get("vessel", 1.0), scores.get("truncation", 0.0)
+        cx, cy = float(b.center.position.x), float(b.center.position.y)
+        boxes.append(LabelBox(d.id, cx, cy, float(b.size_x), float(b.size_y), visible, truncation))
     return boxes
 
 
-def _labels(arr: Any) -> list[tuple[str, float, float, float, float, float]]:
+def _labels(arr: Any, visibility: Visibility | None = None) -> list[tuple[str, float, float, float, float, float]]:
     """``(instance, cx, cy, w, h, visible_fraction)`` of a ``Detection2DArray`` (the label detector's input)."""
-    return [(b.instance, b.cx, b.cy, b.w, b.h, b.visible) for b in label_boxes(arr)]
+    return [(b.instance, b.cx, b.cy, b.w, b.h, b.visible) for b in label_boxes(arr, visibility)]
 
 
 def _bgr(msg: Any, topic: str) -> NDArray[np.uint8]:
@@ -165,17 +186,21 @@ def detected_frames(rec: Any, topics: list[str], detector: CameraDetector) -> It
 
     models = {t: camera_info(rec, t) for t in topics}
     onnx = None
+    visibility: dict[tuple[str, int], Visibility] = {}
     if isinstance(detector, OnnxDetectorConfig):
         from seatwin.sensors.camera.onnx_detector import OnnxDetector
 
         onnx = OnnxDetector(detector)
+    else:
+        visibility = label_visibility(rec, topics)
     for m in rec.messages(topics):
         k, dist = models[m.topic]
         if onnx is not None:
             dets = onnx.detect(_bgr(m.msg, m.topic))
         else:
             w, h = int(round(2 * (k[0, 2] + 0.5))), int(round(2 * (k[1, 2] + 0.5)))
-            dets = detect(_labels(m.msg), detector, m.topic, m.log_time_ns, w, h)
+            stamp = int(m.msg.header.stamp.sec) * 1_000_000_000 + int(m.msg.header.stamp.nanosec)
+            dets = detect(_labels(m.msg, visibility.get((m.topic, stamp))), detector, m.topic, m.log_time_ns, w, h)
         yield CameraFrame(
             camera_prefix(m.topic), m.topic, stamp_s(m.msg.header.stamp), m.log_time_ns, m.msg.header.frame_id, dets, k, dist
         )

@@ -61,9 +61,10 @@ def run_demo(
     for name in builtin_names():
         plot_scenario(builtin_scenario(name), figures / f"{name}.png")
     announce("simulate the stand-in for reality (exact ray casting, range noise, range dissipation)")
-    simulate_run(scenario, out / "reality", duration=duration, seed=seed, range_noise=0.05, dissipation=True, progress=progress)
+    lidar = {"sensors": ("lidar",), "seed": seed, "progress": progress}  # the demo compares lidar tracking: no camera rig
+    simulate_run(scenario, out / "reality", duration=duration, range_noise=0.05, dissipation=True, **lidar)
     announce("simulate with the thesis's depth-buffer lidar")
-    simulate_run(scenario, out / "simulator", duration=duration, seed=seed, lidar_mode="depthbuffer", progress=progress)
+    simulate_run(scenario, out / "simulator", duration=duration, lidar_mode="depthbuffer", **lidar)
     announce("track both with the thesis tunings and compare")
     result = compare_runs(
         [out / "reality"],

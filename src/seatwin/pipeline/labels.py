@@ -53,7 +53,7 @@ def export_coco(run: str | Path, out: str | Path, min_visible_fraction: float = 
     images its ``annotations.json`` lists are removed first (other files in ``out`` stay).
     """
     from seatwin.outputs import check_output_folder, write_text_atomic
-    from seatwin.perception.camera_frames import label_boxes
+    from seatwin.perception.camera_frames import label_boxes, label_visibility
     from seatwin.recording import open_bag
     from seatwin.recording.images import image_to_array
 
@@ -69,6 +69,7 @@ def export_coco(run: str | Path, out: str | Path, min_visible_fraction: float = 
         if label_topics:
             for m in rec.messages(label_topics):
                 labels[(m.topic, _stamp(m.msg))] = m.msg
+        visibility = label_visibility(rec, label_topics)
         (out / "images").mkdir(parents=True, exist_ok=True)
         images, annotations = [], []
         for m in rec.messages(image_topics):
@@ -91,8 +92,9 @@ def export_coco(run: str | Path, out: str | Path, min_visible_fraction: float = 
                     "stamp_ns": stamp,
                 }
             )
-            arr = labels.get((_labels_topic(m.topic), stamp))
-            for box in label_boxes(arr) if arr is not None else ():
+            key = (_labels_topic(m.topic), stamp)
+            arr = labels.get(key)
+            for box in label_boxes(arr, visibility.get(key)) if arr is not None else ():
                 if box.visible <= min_visible_fraction:
                     continue
                 w, h = box.w, box.h

@@ -10,10 +10,12 @@ import re
 from dataclasses import asdict, dataclass, fields
 from typing import Any, Literal
 
+from seatwin.defaults import ROS_DISTROS, RosDistro
 from seatwin.errors import InputError, ParameterError
 
 BagFormat = Literal["mcap", "sqlite3", "ros1"]
 FORMATS: tuple[str, ...] = ("mcap", "sqlite3", "ros1")
+
 
 _BAD = re.compile(r"[^A-Za-z0-9_/]")
 
@@ -37,6 +39,8 @@ class TopicConfig:
     pose: str = "/ground_truth/{vessel}/pose"
     odom: str = "/ground_truth/{vessel}/odom"
     fix: str = "/ground_truth/{vessel}/fix"
+    markers: str = "/ground_truth/markers"
+    """Every vessel as a 3-D box and its name (``visualization_msgs/MarkerArray``, RViz and Foxglove)."""
     tf: str = "/tf"
     tf_static: str = "/tf_static"
     world_frame: str = "world_ned"
@@ -79,6 +83,13 @@ class TopicConfig:
             if not (isinstance(value, str) or (key == "display_frame" and value is None)):
                 raise InputError(source, f"expected a string, got {value!r}", where=key)
         return cls(**data)
+
+
+def check_ros_distro(name: str, param: str = "ros_distro") -> RosDistro:
+    """Validate a ROS 2 distribution name (a :class:`ParameterError` naming ``param`` otherwise)."""
+    if name not in ROS_DISTROS:
+        raise ParameterError(param, f"unknown ROS 2 distribution {name!r}; expected one of {', '.join(ROS_DISTROS)}")
+    return name  # type: ignore[return-value]
 
 
 def check_format(fmt: str, param: str = "fmt") -> BagFormat:

@@ -34,11 +34,11 @@ def typestore(fmt: str) -> Typestore:
             from rosbags.typesys import get_types_from_msg
 
             store.register(get_types_from_msg("geometry_msgs/TransformStamped[] transforms", "tf2_msgs/msg/TFMessage"))
-        if "vision_msgs/msg/Detection2DArray" not in store.types:  # neither store ships vision_msgs
+        for package in (VISION_MSGS, FOXGLOVE_MSGS):  # neither store ships vision_msgs or foxglove_msgs
             from rosbags.typesys import get_types_from_msg
 
             types: dict[str, Any] = {}
-            for name, text in VISION_MSGS.items():
+            for name, text in package.items():
                 types.update(get_types_from_msg(text, name))
             store.register(types)
         _STORES[key] = store
@@ -57,6 +57,26 @@ VISION_MSGS: dict[str, str] = {
 }
 """``vision_msgs`` 4.x (ROS 2 Humble) definitions of the 2-D detection messages, registered in both
 typestores (a ROS 1 bag carries the same layout with its own Header)."""
+
+
+_KV = "foxglove_msgs/KeyValuePair[] metadata"
+FOXGLOVE_MSGS: dict[str, str] = {
+    "foxglove_msgs/msg/Point2": "float64 x\nfloat64 y",
+    "foxglove_msgs/msg/Color": "float64 r\nfloat64 g\nfloat64 b\nfloat64 a",
+    "foxglove_msgs/msg/KeyValuePair": "string key\nstring value",
+    "foxglove_msgs/msg/CircleAnnotation": "builtin_interfaces/Time timestamp\nfoxglove_msgs/Point2 position\n"
+    "float64 diameter\nfloat64 thickness\nfoxglove_msgs/Color fill_color\nfoxglove_msgs/Color outline_color\n" + _KV,
+    "foxglove_msgs/msg/PointsAnnotation": "builtin_interfaces/Time timestamp\nuint8 UNKNOWN=0\nuint8 POINTS=1\n"
+    "uint8 LINE_LOOP=2\nuint8 LINE_STRIP=3\nuint8 LINE_LIST=4\nuint8 type\nfoxglove_msgs/Point2[] points\n"
+    "foxglove_msgs/Color outline_color\nfoxglove_msgs/Color[] outline_colors\nfoxglove_msgs/Color fill_color\n"
+    "float64 thickness\n" + _KV,
+    "foxglove_msgs/msg/TextAnnotation": "builtin_interfaces/Time timestamp\nfoxglove_msgs/Point2 position\n"
+    "string text\nfloat64 font_size\nfoxglove_msgs/Color text_color\nfoxglove_msgs/Color background_color\n" + _KV,
+    "foxglove_msgs/msg/ImageAnnotations": "builtin_interfaces/Time timestamp\nfoxglove_msgs/CircleAnnotation[] circles\n"
+    "foxglove_msgs/PointsAnnotation[] points\nfoxglove_msgs/TextAnnotation[] texts\n" + _KV,
+}
+"""``foxglove_msgs`` ROS 2 definitions of the Foxglove SDK's current schema (comments left out), in dependency
+order; registered in both typestores (:mod:`seatwin.recording.foxglove` builds the messages)."""
 
 
 def split_stamp(t: float) -> tuple[int, int]:

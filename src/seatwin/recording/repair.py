@@ -22,7 +22,7 @@ from pathlib import Path
 
 from seatwin.errors import InputError
 from seatwin.recording.config import TopicConfig
-from seatwin.recording.manifest import MANIFEST_NAME, read_manifest, write_manifest
+from seatwin.recording.manifest import MANIFEST_NAME, check_bag_output, read_manifest, write_manifest
 from seatwin.recording.reader import Recording
 from seatwin.recording.reader import _find_bag as find_bag  # where a path keeps its bag, without opening it
 from seatwin.recording.storage import bag_path, open_storage
@@ -78,7 +78,7 @@ def repair_bag(
             target = _staging(run_dir if run_dir is not None else rec.bag)
         else:
             target = Path(out) if out is not None else default_out(run_dir if run_dir is not None else source)
-            _check_target(target, source, overwrite)
+            check_bag_output(target, source, overwrite)
         new_bag = bag_path(target, rec.format) if run_dir is not None else target
         result = RepairResult(source, target, new_bag, rec.format, 0, was_finished=not rec.recovered, truncated=rec.truncated)
         try:
@@ -98,25 +98,6 @@ def repair_bag(
         result.out = original
         result.bag = bag_path(original, rec.format) if run_dir is not None else original
     return result
-
-
-def _check_target(target: Path, source: Path, overwrite: bool) -> None:
-    """Refuse an output that is the input or inside it, or that exists (unless ``overwrite``: then an earlier
-    run folder of seatwin's or a bag is removed), or cannot be written."""
-    from seatwin.outputs import OutputExistsError, check_writable, refuse_inputs
-
-    refuse_inputs(target, "out", [source])
-    if not (target.exists() or target.is_symlink()):
-        check_writable(target, "out")
-        return
-    if not overwrite:
-        raise OutputExistsError("out", target)
-    if target.is_dir() and not target.is_symlink():
-        if read_manifest(target) is None and not (target / "metadata.yaml").is_file():
-            raise InputError(target, "exists and is not a seatwin run or a rosbag2 bag: not replaced; choose a new output")
-        shutil.rmtree(target)
-    else:
-        target.unlink()
 
 
 class _reading_copy:

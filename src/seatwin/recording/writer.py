@@ -33,10 +33,11 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from seatwin import __version__
+from seatwin.defaults import DEFAULT_ROS_DISTRO
 from seatwin.errors import InputError
 from seatwin.geo import GeodeticOrigin
 from seatwin.recording import messages as M
-from seatwin.recording.config import TopicConfig, check_format
+from seatwin.recording.config import TopicConfig, check_format, check_ros_distro
 from seatwin.recording.fast_cdr import (
     NAV_SAT_FIX,
     ODOMETRY,
@@ -85,6 +86,7 @@ class RecordingWriter:
 
     ``scenario_file`` is copied into ``run_dir`` (a file already there is just named in the
     manifest); ``sensors`` and ``metadata`` go into the manifest as given (JSON-serialisable).
+    ``ros_distro`` picks a rosbag2 bag's metadata version (:data:`~seatwin.defaults.ROS_DISTROS`).
     """
 
     def __init__(
@@ -103,8 +105,10 @@ class RecordingWriter:
         manifest_wall_s: float = 0.25,
         row_step_zero: bool = False,
         fsync: bool = False,
+        ros_distro: str = DEFAULT_ROS_DISTRO,
     ) -> None:
         self.format = check_format(fmt)
+        ros_distro = check_ros_distro(ros_distro)
         self.run_dir = Path(run_dir)
         self.topics = topics or TopicConfig()
         self.origin = origin
@@ -170,7 +174,9 @@ class RecordingWriter:
             "topic_config": self.topics.to_dict(),
             "metadata": metadata or {},
         }
-        self.storage: BagStorage = open_storage(self.format, self.bag, self.store, fsync=fsync)
+        if self.format != "ros1":
+            self._manifest["ros_distro"] = ros_distro
+        self.storage: BagStorage = open_storage(self.format, self.bag, self.store, fsync=fsync, ros_distro=ros_distro)
         """The bag file(s): one :class:`~seatwin.recording.storage.BagStorage` class per format."""
         self._write_manifest()
 

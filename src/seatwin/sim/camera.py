@@ -2,8 +2,12 @@
 
 Per frame and camera: ``/camera/<name>/image_raw`` (``sensor_msgs/Image`` bgr8),
 ``/camera/<name>/camera_info`` (plumb-bob K, R, P, D) and, with ``labels``,
-``/camera/<name>/labels`` (``vision_msgs/Detection2DArray``: one detection per vessel in view,
-``id`` = vessel name, results ``("vessel", visible fraction)`` and ``("truncation", truncation)``).
+``/camera/<name>/labels`` (``vision_msgs/Detection2DArray``: one detection per vessel in view, ``id`` =
+vessel name, one hypothesis ``("vessel", 1.0)``: a ground-truth box is certain, and ``score`` is a
+confidence as vision_msgs means it) and the same boxes as ``/camera/<name>/annotations``
+(``foxglove_msgs/ImageAnnotations``, which Foxglove's Image panel draws; each box's ``metadata`` holds
+``instance``, ``class``, ``visible_fraction`` and ``truncation``, for which vision_msgs has no field, and
+its text says them).
 Frame ids are the cameras' optical frames, mounted on the ownship's body frame on /tf_static.
 """
 
@@ -19,6 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seatwin.recording import RecordingWriter, StaticTransform, TopicConfig
+from seatwin.recording.foxglove import LabelAnnotation, image_annotations
 from seatwin.recording.messages import Box2D, quaternion_from_matrix
 from seatwin.sensors.camera.config import CameraConfig
 from seatwin.sensors.camera.intrinsics import source_pixels
@@ -59,14 +64,26 @@ def camera_topics(topics: TopicConfig, camera: str) -> tuple[str, str, str]:
     return image, f"{base}/camera_info", f"{base}/labels"
 
 
+GROUND_TRUTH_CONFIDENCE = 1.0
+"""The ``hypothesis.score`` of a ground-truth box: its class is known."""
+
+
 def label_boxes(labels: list[BoxLabel]) -> list[Box2D]:
-    """Labels as :class:`~seatwin.recording.messages.Box2D` (results: visible fraction, truncation)."""
+    """Labels as :class:`~seatwin.recording.messages.Box2D` (one hypothesis: the class, confidence 1)."""
+    return [Box2D(b.instance, *b.center, *b.size, results=((b.label, GROUND_TRUTH_CONFIDENCE),)) for b in labels]
+
+
+def annotations_topic(labels_topic: str) -> str:
+    """The ``foxglove_msgs/ImageAnnotations`` topic beside a labels topic: ``/camera/<name>/annotations``."""
+    return posixpath.join(posixpath.dirname(labels_topic), "annotations")
+
+
+def annotations(labels: list[BoxLabel]) -> list[LabelAnnotation]:
+    """Labels as Foxglove boxes: pixel centres at integers → pixel edges at integers (the top-left pixel's
+    top-left corner is 0, 0), as ``seatwin labels export`` converts them for COCO."""
     return [
-        Box2D(
-            b.instance,
-            *b.center,
-            *b.size,
-            results=((b.label, b.visible_fraction), ("truncation", b.truncation)),
+        LabelAnnotation(
+            b.instance, b.label, b.x_min + 0.5, b.y_min + 0.5, b.x_max + 0.5, b.y_max + 0.5, b.visible_fraction, b.truncation
         )
         for b in labels
     ]
@@ -167,4 +184,5 @@ class CameraSensor:
             writer.write_camera_info(info_topic, m.frame_id, t, info.width, info.height, info.k, info.d, info.r, info.p)
             if self.config.labels:
                 writer.write_labels(labels_topic, m.frame_id, t, label_boxes(img.labels))
+                writer.write(annotations_topic(labels_topic), t, image_annotations(writer.store, t, annotations(img.labels)))
         self.timing.encode_s += _time.perf_counter() - t0

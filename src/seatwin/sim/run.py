@@ -156,6 +156,7 @@ def simulate_scenario(
         progress=progress,
         on_frame=on_frame,
         writer_kwargs={
+            "ros_distro": settings.ros_distro,
             "origin": scenario.origin,
             "seed": scenario.seed,
             "scenario_file": yaml_path,

@@ -8,6 +8,7 @@ Lidar, ground truth and radar (:mod:`seatwin.sim.radar`) plug in here; cameras c
 
 from __future__ import annotations
 
+import math
 from typing import Any, Protocol
 
 import numpy as np
@@ -66,6 +67,8 @@ class GroundTruthSensor(Periodic):
     def __init__(self, scenario: Scenario, rate_hz: float = 10.0, phase_s: float = 0.0, name: str = "ground_truth"):
         self.scenario, self.rate_hz, self.phase_s, self.name = scenario, float(rate_hz), float(phase_s), name
         self._table: PoseTable | None = None
+        self._markers: tuple[RecordingWriter, bytes, float] | None = None
+        """(the writer, the run's MarkerArray bytes, when they were last written)."""
 
     def frame_times(self, t0: float, t1: float) -> NDArray[np.float64]:
         times = super().frame_times(t0, t1)
@@ -85,7 +88,28 @@ class GroundTruthSensor(Periodic):
         return poses_from_scenario(self.scenario, t)
 
     def record(self, writer: RecordingWriter, t: float, data: list[VesselPose]) -> None:
+        from seatwin.recording.foxglove import MARKER_PERIOD_S
+
         writer.write_ground_truth(t, data)
+        if self._markers is None or self._markers[0] is not writer:
+            self._markers = (writer, self._marker_bytes(writer, data), -math.inf)
+        w, data_bytes, last = self._markers
+        if t - last >= MARKER_PERIOD_S - 1e-6:
+            writer.write_raw(writer.topics.markers, "visualization_msgs/msg/MarkerArray", t, data_bytes)
+            self._markers = (w, data_bytes, t)
+
+    def _marker_bytes(self, writer: RecordingWriter, data: list[VesselPose]) -> bytes:
+        """The vessels' markers, serialised once a run: they sit in the body frames (frame-locked, stamp 0 =
+        the latest /tf), so the message never changes."""
+        from seatwin.recording.foxglove import marker_array_bytes, vessel_marker_specs
+
+        dims = {v.name: v.dimensions for v in self.scenario.vessels}
+        vessels = []
+        for p in data:
+            d = dims.get(p.name)
+            size = (d.length, d.beam, d.height) if d is not None else (0.0, 0.0, 0.0)  # unknown size: the name only
+            vessels.append((p.name, writer.topics.body(p.name), size, p.ownship))
+        return marker_array_bytes(vessel_marker_specs(vessels), ros1=writer.format == "ros1")
 
 
 class LidarSensor(Periodic):

@@ -10,6 +10,7 @@ from typing import Literal
 
 from pydantic import Field, field_validator
 
+from seatwin.defaults import DEFAULT_ROS_DISTRO, DEFAULT_SENSORS
 from seatwin.layout.harbours import check_harbour_spec
 from seatwin.settings import Settings
 
@@ -22,7 +23,9 @@ class SimulationSettings(Settings):
     """Every choice of ``simulate`` besides the scenario and the time window."""
 
     sensors: tuple[Literal["lidar", "radar", "camera"], ...] = Field(
-        ("lidar",), min_length=1, description="Sensors on the ownship, simulated in one loop (ground truth is always recorded)."
+        DEFAULT_SENSORS,
+        min_length=1,
+        description="Sensors on the ownship, simulated in one loop (ground truth is always recorded).",
     )
     seed: int | None = Field(None, description="Seed of every random draw (default: the scenario's).")
     lidar_preset: Literal["vlp16", "vlp16-thesis"] = Field(
@@ -62,6 +65,11 @@ class SimulationSettings(Settings):
     )
     camera_labels: bool = Field(True, description="Record ground-truth 2-D boxes of the vessels per camera image.")
     fmt: Literal["mcap", "sqlite3", "ros1"] = Field("mcap", description="Bag format.")
+    ros_distro: Literal["humble", "iron", "jazzy", "kilted"] = Field(
+        DEFAULT_ROS_DISTRO,
+        description="ROS 2 distribution a rosbag2 bag (mcap, sqlite3) is written for: its metadata version "
+        "(humble 5, iron 7, jazzy and kilted 9); a distro reads its own version and older ones.",
+    )
     ground_truth_rate_hz: float = Field(10.0, gt=0, description="Rate of the ground-truth topics [Hz].")
 
     @field_validator("mount_yaw_bias_deg")

@@ -14,7 +14,7 @@ import csv
 import json
 import os
 
-from pythonfmu import Fmi2Causality, Fmi2Slave, Real
+from pythonfmu import Fmi2Causality, Fmi2Initial, Fmi2Slave, Fmi2Variability, Real
 
 
 def _unwrap_deg(values):
@@ -49,11 +49,24 @@ class ScenarioPlayer(Fmi2Slave):
             self._cols[3 * i + 2] = _unwrap_deg(self._cols[3 * i + 2])
         self._pose = [0.0] * (3 * len(self.vessels))
         self._at(0.0)
-        self.register_variable(Real("start_time", causality=Fmi2Causality.output, getter=lambda: self.start_time))
+        # Every output is known exactly before initialisation (the embedded scenario at t = 0), so each is
+        # initial="exact" with that start value, and ModelStructure needs no InitialUnknowns (FMI 2.0 §2.2.8).
+        # The start time is a constant of the embedded scenario.
+        self.register_variable(
+            Real(
+                "start_time",
+                causality=Fmi2Causality.output,
+                variability=Fmi2Variability.constant,
+                initial=Fmi2Initial.exact,
+                getter=lambda: self.start_time,
+            )
+        )
         for i, name in enumerate(self.vessels):
             for j, q in enumerate(("north", "east", "heading")):
                 k = 3 * i + j
-                self.register_variable(Real(f"{name}.{q}", causality=Fmi2Causality.output, getter=lambda k=k: self._pose[k]))
+                var = Real(f"{name}.{q}", causality=Fmi2Causality.output, initial=Fmi2Initial.exact)
+                var.getter = lambda k=k: self._pose[k]
+                self.register_variable(var)
 
     def _at(self, t):
         ts = self._t

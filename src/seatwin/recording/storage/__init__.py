@@ -12,6 +12,7 @@ from pathlib import Path
 
 from rosbags.typesys.store import Typestore
 
+from seatwin.defaults import DEFAULT_ROS_DISTRO
 from seatwin.recording.config import check_format
 from seatwin.recording.storage.base import BagStorage
 from seatwin.recording.storage.mcap import McapStorage
@@ -29,9 +30,11 @@ def bag_path(run_dir: Path, fmt: str) -> Path:
     return Path(run_dir) / (f"{BAG_STEM}.bag" if fmt == "ros1" else BAG_STEM)
 
 
-def open_storage(fmt: str, path: Path, store: Typestore, *, fsync: bool = False) -> BagStorage:
-    """A new, opened bag of format ``fmt`` at ``path``."""
-    storage = STORAGES[check_format(fmt)](path, store, fsync=fsync)
+def open_storage(
+    fmt: str, path: Path, store: Typestore, *, fsync: bool = False, ros_distro: str = DEFAULT_ROS_DISTRO
+) -> BagStorage:
+    """A new, opened bag of format ``fmt`` at ``path`` (a rosbag2 bag in ``ros_distro``'s metadata version)."""
+    storage = STORAGES[check_format(fmt)](path, store, fsync=fsync, ros_distro=ros_distro)
     storage.open()
     return storage
 

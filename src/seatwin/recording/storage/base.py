@@ -10,6 +10,9 @@ from typing import ClassVar
 from rosbags.interfaces import Connection
 from rosbags.typesys.store import Typestore
 
+from seatwin.defaults import DEFAULT_ROS_DISTRO
+from seatwin.recording.config import check_ros_distro
+
 
 class BagStorage(ABC):
     """One bag format's file(s): connections and serialised messages in, a finished bag out.
@@ -26,10 +29,12 @@ class BagStorage(ABC):
     ros1: ClassVar[bool] = False
     """Messages are ROS 1 serialised (else CDR)."""
 
-    def __init__(self, path: Path, store: Typestore, *, fsync: bool = False) -> None:
+    def __init__(self, path: Path, store: Typestore, *, fsync: bool = False, ros_distro: str = DEFAULT_ROS_DISTRO) -> None:
         self.path = Path(path)
         self.store = store
         self.fsync = fsync
+        self.ros_distro = check_ros_distro(ros_distro)
+        """The ROS 2 distribution a rosbag2 bag is written for (its metadata version); ROS 1 bags ignore it."""
 
     @abstractmethod
     def open(self) -> None:

@@ -1,12 +1,18 @@
-"""What MCAP and SQLite3 share: a rosbag2 directory (version 9) with ``metadata.yaml``.
+"""What MCAP and SQLite3 share: a rosbag2 directory with ``metadata.yaml``, in the metadata version of
+the ROS 2 distribution it is written for (:data:`~seatwin.defaults.ROS_DISTROS`: Humble 5, Iron 7,
+Jazzy and Kilted 9).
 
-Connections, the metadata and the storage file are the same as rosbags' ``rosbag2.Writer``
-writes (tested byte for byte); the storage file itself is one of rosbags' storage plugins, and
-the YAML texts come from :func:`~seatwin.recording.storage.metadata_yaml.dump_yaml`.
+Each version has the fields rosbag2 added up to it (:data:`FIELDS_SINCE`); below 9 the offered QoS
+profiles are a YAML *string* with numeric enums (what Humble and Iron parse), from 9 a YAML list with
+names. In version 9 the connections, the metadata and the storage file are what rosbags'
+``rosbag2.Writer`` writes (tested byte for byte, but for ``ros_distro``: rosbags writes ``rosbags``,
+seatwin the distribution); the storage file itself is one of rosbags' storage plugins, and the YAML
+texts come from :func:`~seatwin.recording.storage.metadata_yaml.dump_yaml`.
 """
 
 from __future__ import annotations
 
+import json
 import os
 from collections.abc import Sequence
 from pathlib import Path
@@ -28,11 +34,13 @@ from rosbags.rosbag2.enums import CompressionMode
 from rosbags.rosbag2.metadata import dump_qos_v9
 from rosbags.typesys.store import Typestore
 
+from seatwin.defaults import DEFAULT_ROS_DISTRO, ROS_DISTROS
 from seatwin.recording.storage.base import BagStorage
 from seatwin.recording.storage.metadata_yaml import dump_yaml
 
-VERSION = 9
-"""rosbag2 bag format version written."""
+FIELDS_SINCE = {"offered_qos_profiles": 4, "files": 5, "custom_data": 6, "type_description_hash": 7, "ros_distro": 8}
+"""The metadata version that introduced each optional field (rosbag2's ``yaml.hpp`` decoders). seatwin writes
+``ros_distro`` in every version (older readers ignore a key they do not know; it says which distro the bag is for)."""
 
 _ZERO = QosTime(0, 0)
 LATCHED_QOS = Qos(
@@ -57,8 +65,10 @@ class Rosbag2Storage(BagStorage):
     plugin: ClassVar[Any]
     """The rosbags storage writer class (``McapWriter``, ``Sqlite3Writer`` or a subclass); :attr:`writer` is the open one."""
 
-    def __init__(self, path: Path, store: Typestore, *, fsync: bool = False) -> None:
-        super().__init__(path, store, fsync=fsync)
+    def __init__(self, path: Path, store: Typestore, *, fsync: bool = False, ros_distro: str = DEFAULT_ROS_DISTRO) -> None:
+        super().__init__(path, store, fsync=fsync, ros_distro=ros_distro)
+        self.version = ROS_DISTROS[self.ros_distro]
+        """rosbag2 metadata version written."""
         self.connections: list[Connection] = []
         self.counts: dict[int, int] = {}
         self.min_timestamp = 2**63 - 1
@@ -95,10 +105,26 @@ class Rosbag2Storage(BagStorage):
         )
         if new_type:  # the schema, once per message type
             self.writer.add_msgtype(conn)
-        self.writer.add_connection(conn, dump_yaml(dump_qos_v9(qos)).strip())
+        self.writer.add_connection(conn, self._qos_text(qos))
         self.connections.append(conn)
         self.counts[conn.id] = 0
         return conn
+
+    def _qos(self, qos: list[Qos]) -> str | list[Any]:
+        """``offered_qos_profiles`` as this version's metadata has it: a YAML list (9), else a YAML string of the
+        same maps with the enums as numbers (what rosbags' ``dump_qos_v8`` writes, without ruamel's cost)."""
+        profiles = dump_qos_v9(qos)
+        if self.version >= 9:
+            return profiles
+        for x, d in zip(qos, profiles):
+            d.update(history=x.history.value, reliability=x.reliability.value, durability=x.durability.value)
+            d.update(liveliness=x.liveliness.value)
+        return dump_yaml(profiles).strip() if profiles else ""
+
+    def _qos_text(self, qos: list[Qos]) -> str:
+        """The QoS text a storage file keeps per topic (MCAP channel metadata, SQLite3 ``topics`` row)."""
+        q = self._qos(qos)
+        return q if isinstance(q, str) else dump_yaml(q).strip()
 
     def write(self, connection: Connection, timestamp: int, data: bytes | memoryview) -> None:
         self.write_many(((connection, data),), timestamp)
@@ -125,26 +151,22 @@ class Rosbag2Storage(BagStorage):
         duration = max(0, self.max_timestamp - self.min_timestamp)
         start = self.min_timestamp
         count = sum(self.counts.values())
-        return {
-            "version": VERSION,
+        v = self.version
+        topics = []
+        for c in self.connections:
+            meta = {"name": c.topic, "type": c.msgtype, "serialization_format": c.ext.serialization_format}  # type: ignore[union-attr]
+            meta["offered_qos_profiles"] = self._qos(c.ext.offered_qos_profiles)  # type: ignore[union-attr]
+            if v >= FIELDS_SINCE["type_description_hash"]:
+                meta["type_description_hash"] = c.digest
+            topics.append({"topic_metadata": meta, "message_count": self.counts[c.id]})
+        info: dict[str, Any] = {
+            "version": v,
             "storage_identifier": self.format,
             "relative_file_paths": [name],
             "duration": {"nanoseconds": duration},
             "starting_time": {"nanoseconds_since_epoch": start},
             "message_count": count,
-            "topics_with_message_count": [
-                {
-                    "topic_metadata": {
-                        "name": c.topic,
-                        "type": c.msgtype,
-                        "serialization_format": c.ext.serialization_format,  # type: ignore[union-attr]
-                        "offered_qos_profiles": dump_qos_v9(c.ext.offered_qos_profiles),  # type: ignore[union-attr]
-                        "type_description_hash": c.digest,
-                    },
-                    "message_count": self.counts[c.id],
-                }
-                for c in self.connections
-            ],
+            "topics_with_message_count": topics,
             "compression_format": "",
             "compression_mode": "",
             "files": [
@@ -155,20 +177,47 @@ class Rosbag2Storage(BagStorage):
                     "message_count": count,
                 }
             ],
-            "custom_data": None,
-            "ros_distro": "rosbags",
+            "ros_distro": self.ros_distro,
         }
+        if v >= FIELDS_SINCE["custom_data"]:
+            info["custom_data"] = None
+        return info
 
     def close(self) -> None:
         info = self.metadata()
-        self.writer.close(VERSION, dump_yaml(info).strip())
+        self.writer.close(self.version, _dump_metadata(info).strip())
         self.writer = None
         meta = self.path / "metadata.yaml"
         tmp = meta.with_suffix(".yaml.tmp")
-        tmp.write_text(dump_yaml({"rosbag2_bagfile_information": info}), "utf8")
+        tmp.write_text(_dump_metadata({"rosbag2_bagfile_information": info}), "utf8")
         os.replace(tmp, meta)
 
     def abort(self) -> None:
         writer, self.writer = self.writer, None
         if writer is not None:
             writer.abort()
+
+
+def _dump_metadata(doc: dict[str, Any]) -> str:
+    """``doc`` as YAML; below version 9 each QoS *string* (several lines) goes in as a JSON string, which YAML
+    reads as a double-quoted scalar — the rest through :func:`dump_yaml`, which hands a document with such a
+    string whole to ruamel (~80 ms for a run's metadata)."""
+    strings: list[str] = []
+
+    def swap(node: Any) -> Any:
+        if isinstance(node, dict):
+            out = {}
+            for k, v in node.items():
+                if k == "offered_qos_profiles" and isinstance(v, str) and v:
+                    strings.append(v)
+                    v = f"qos_placeholder_{len(strings) - 1}"
+                out[k] = swap(v)
+            return out
+        if isinstance(node, list):
+            return [swap(x) for x in node]
+        return node
+
+    text = dump_yaml(swap(doc))
+    for i in reversed(range(len(strings))):  # placeholder 1 before 10 would match a prefix of it
+        text = text.replace(f"qos_placeholder_{i}", json.dumps(strings[i]))
+    return text

@@ -22,6 +22,7 @@ class Sqlite3Storage(Rosbag2Storage):
         super().open()
         if not self.fsync:
             self.writer.conn.execute("PRAGMA synchronous=OFF")
+        self.writer.conn.execute("UPDATE schema SET ros_distro = ?", (self.ros_distro,))  # rosbags writes 'rosbags'
 
     def flush(self) -> None:
         self.writer.conn.commit()
