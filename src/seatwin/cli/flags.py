@@ -40,6 +40,7 @@ FLAG_OF: dict[str, str] = {
     "radar_config": "--radar",
     "n_boot": "--boot",
     "seed0": "--seed",
+    "camera_hfov_deg": "--camera-hfov",
 }
 
 

@@ -14,6 +14,8 @@ from typing import Any
 from rich.markup import escape
 from typer.core import TyperArgument, TyperGroup, TyperOption
 
+__all__ = ["PlainHelpGroup", "escape", "tidy"]
+
 # Typer's ``<type>`` placeholders → the words the hand-written metavars use.
 _PLACEHOLDER: dict[str, str] = {"float": "FLOAT", "int": "INT", "str": "TEXT", "path": "PATH"}
 

@@ -157,7 +157,9 @@ def camera_snapshot(
     if not sc.start <= t <= sc.end:
         from seatwin.errors import ParameterError
 
-        raise ParameterError("time", f"{t - sc.start:.3f} s is outside the scenario (0 … {sc.end - sc.start:.3f} s)")
+        raise ParameterError(
+            "time", f"{t - sc.start:g} s is outside the scenario: expected 0 to {sc.end - sc.start:g} s after its start"
+        )
     sensor = CameraSensor(CameraConfig(), Scene.from_scenario(sc, harbour=harbour), sc.ownship.name)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)

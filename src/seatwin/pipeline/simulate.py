@@ -39,5 +39,12 @@ def simulate_run(
         raise ParameterError("start_offset", "give a start time or an offset after the scenario's start, not both")
     sc = scenario if isinstance(scenario, Scenario) else load_scenario(str(scenario), date=date)
     if start_offset is not None:
+        span = sc.end - sc.start
+        if not 0 <= float(start_offset) < span:
+            from seatwin.errors import ParameterError
+
+            raise ParameterError(
+                "start_offset", f"{float(start_offset):g} s is outside the scenario: expected 0 to {span:g} s after its start"
+            )
         start = sc.start + float(start_offset)
     return simulate_scenario(sc, out, settings, start=start, duration=duration, progress=progress, on_frame=on_frame, **changes)
