@@ -214,6 +214,8 @@ def register(app: typer.Typer) -> None:
                     )
         if result.camera is not None:
             _print_camera(result.camera)
+        for warning in result.warnings:
+            typer.echo(f"seatwin: warning: {warning}", err=True)
         for path in result.track_files:
             typer.echo(f"wrote {path}")
         if json_out is not None:
