@@ -50,3 +50,18 @@ def test_compare_prints_the_warning(runs: dict[str, Path], tmp_path: Path, capsy
     assert "seatwin: warning: both runs were simulated from ferry_crossing with seed 1" in err
     assert run([*argv[:4], str(runs["b2"]), *argv[5:]]) == 0
     assert "warning" not in capsys.readouterr().err
+
+
+def test_ahed_reason_says_who_tracked_the_target() -> None:
+    from dataclasses import replace
+
+    from seatwin.evaluation.compare import TargetComparison
+
+    none = dict.fromkeys(("fraction_only_one", "mean_covdiff", "nees_difference_rms", "rmse_difference_rms"))
+    line = TargetComparison(
+        "Finn", "synthetic", None, "ahed", None, None, "skip", 10, 0, 0, 0, 10, **none, anees_real=None, anees_synthetic=None
+    )
+    assert line.ahed_reason == "neither dataset tracked the target"
+    assert "only the real dataset" in (replace(line, n_only_real=4).ahed_reason or "")
+    assert "only the synthetic dataset" in (replace(line, n_only_synthetic=4).ahed_reason or "")
+    assert replace(line, ahed=0.1, n_common=3).ahed_reason is None

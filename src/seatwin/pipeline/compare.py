@@ -281,7 +281,7 @@ def compare_runs(
         )
         name = scenario_name(truth)
         described = [(describe_dataset(r), describe_dataset(s)) for r, s, _, _ in pairs]
-        notes = [f"“Real” dataset: {r}. “Synthetic” dataset: {s}." for r, s in described]
+        notes = list(dict.fromkeys(f"“Real” dataset: {r}. “Synthetic” dataset: {s}." for r, s in described))  # once per pair
         if any(r.startswith("simulated") for r, _ in described):
             notes.append("The “real” side here is itself simulated: this compares two sensor models, not reality.")
         notes += [f"Warning: {w}." for w in result.warnings]
