@@ -74,3 +74,23 @@ def test_sweep_help_shows_the_code_s_numbers(capsys: pytest.CaptureFixture[str],
     assert f"noise {','.join(f'{s:g}' for s in noise.default_strengths)} m" in shown
     assert f"drop {','.join(f'{s:g}' for s in drop.default_strengths)}" in shown
     assert "0.05 m" not in shown
+
+
+@pytest.mark.parametrize("duration", ["0", "-1", "9999"])
+def test_radar_simulate_refused_writes_nothing(duration: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """Issue 25, item 9: a refused ``radar simulate`` left a header-only CSV; its help showed [x>=0.0] while 0 is refused."""
+    out, spokes = tmp_path / "X.csv", tmp_path / "spokes"
+    err = _error(
+        capsys, ["radar", "simulate", "ferry_crossing", "--duration", duration, "--out", str(out), "--spokes-dir", str(spokes)]
+    )
+    assert err.startswith("--duration: ")
+    assert not out.exists() and not spokes.exists()
+
+
+def test_radar_simulate_help_shows_no_bound_that_admits_0(
+    capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("COLUMNS", "2000")
+    assert run(["radar", "simulate", "--help"]) == 0
+    out = capsys.readouterr().out
+    assert "x>=0.0" not in out and "more than 0" in out

@@ -59,6 +59,7 @@ def simulate_radar(
         SimulationSettings,
         {"sensors": ("radar",), "radar_config": radar_config, "seed": seed, "fmt": fmt, "radar_spokes": spokes_dir is not None},
     )
+    t0, t1 = time_window(sc.start, sc.end, sc.start + start_offset, duration)  # checked before anything is written
     counts = {"scans": 0, "plots": 0}
     with contextlib.ExitStack() as stack:
         rows = None
@@ -98,7 +99,6 @@ def simulate_radar(
             )
         else:
             radar = [s for s in scenario_sensors(sc, settings) if isinstance(s, RadarSensor)]
-            t0, t1 = time_window(sc.start, sc.end, sc.start + start_offset, duration)
             for t, i, k, data in frames(radar, t0, t1):
                 export(radar[i], t, k, data)
     outputs = [p for p in (plots_csv, run_dir, spokes_dir) if p is not None]
