@@ -50,7 +50,7 @@ def test_served_bag_equals_simulated_bag(tmp_path):
 
     sc = builtin_scenario(SCENARIO)
     start = sc.start + 5.0
-    ref = simulate_run(sc, tmp_path / "ref", start=start, duration=DURATION, progress=False, seed=7)
+    ref = simulate_run(sc, tmp_path / "ref", start=start, duration=DURATION, progress=False, seed=7, sensors=("lidar",))
     handle = serve(tmp_path / "served", port=0, seed=7)
     try:
         _drive(handle.address, sc, start, DURATION, lead_in=1)  # a step before the start: central differences there too
@@ -140,7 +140,7 @@ def test_first_velocity_without_and_with_a_step_before_the_start(tmp_path):
 
     sc = builtin_scenario(SCENARIO)
     start = sc.start + 4.0  # the ferry accelerates (0.35 m/s²): the one-sided and central differences differ
-    ref = simulate_run(sc, tmp_path / "ref", start=start, duration=1.0, progress=False)
+    ref = simulate_run(sc, tmp_path / "ref", start=start, duration=1.0, progress=False, sensors=("lidar",))
     sim, res = _lockstep(tmp_path / "plain", sc, start, 1.0)
     _, res_lead = _lockstep(tmp_path / "lead", sc, start, 1.0, lead_in=1)
     assert res.frames == res_lead.frames == ref.frames == {"ground_truth": 10, "lidar": 10}

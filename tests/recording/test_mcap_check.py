@@ -34,7 +34,7 @@ def seed(tmp_path_factory: pytest.TempPathFactory) -> Path:
     from seatwin.pipeline import simulate_run
 
     run = tmp_path_factory.mktemp("run")
-    simulate_run("ferry_crossing", run, duration=1.0, progress=False)
+    simulate_run("ferry_crossing", run, duration=1.0, progress=False, sensors=("lidar",))
     return next((run / "recording").glob("*.mcap"))
 
 

@@ -7,6 +7,8 @@ from pathlib import Path
 
 import typer
 
+from seatwin.pipeline.simulate import DEFAULT_SENSORS
+
 
 class LidarMode(str, Enum):
     raycast = "raycast"
@@ -48,7 +50,7 @@ def register(app: typer.Typer) -> None:
         fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Bag format."),
         date: str | None = typer.Option(None, "--date", help="UTC date YYYY-MM-DD of a TimeOfDay CSV."),
         sensors: str = typer.Option(
-            "lidar,camera",
+            ",".join(DEFAULT_SENSORS),
             "--sensors",
             metavar="LIST",
             help="Comma-separated ownship sensors: lidar, radar, camera (the thesis's twin: lidar and the three cameras).",

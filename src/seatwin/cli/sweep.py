@@ -135,7 +135,7 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         from seatwin.cli.output import check_output_dir, progress_counter
         from seatwin.settings import validated
-        from seatwin.sweep import SweepSettings, plot_sweep, run_sweep, spearman_by_kind, summarise, write_results
+        from seatwin.sweep import SweepSettings, run_sweep, spearman_by_kind, summarise, write_sweep
 
         chosen = split_list(kinds, "kinds") or ()
         settings = validated(
@@ -154,8 +154,7 @@ def register(app: typer.Typer) -> None:
         check_output_dir(out, "out")
         with progress_counter("sweep", progress, min_total=1) as advance:
             result = run_sweep(out, settings, workers=workers, address=address, progress=advance)
-        csv_path, json_path = write_results(out, result)
-        png = plot_sweep(result, out / "sweep.png")
+        csv_path, json_path, png = write_sweep(out, result)
         for kind, by_dir in spearman_by_kind(result, "score").items():
             means = ", ".join(
                 f"{s.strength:g}: {s.mean:.3f}" if s.mean is not None else f"{s.strength:g}: –"

@@ -69,7 +69,7 @@ def run_demo(
     for name in builtin_names():
         plot_scenario(builtin_scenario(name), figures / f"{name}.png")
     announce("simulate the stand-in for reality (exact ray casting, range noise, range dissipation)")
-    window = {"start_offset": offset, "duration": duration, "progress": progress}
+    window = {"start_offset": offset, "duration": duration, "progress": progress, "sensors": ("lidar",)}
     simulate_run(scenario, out / "reality", seed=seed, range_noise=0.05, dissipation=True, **window)
     announce("simulate with the thesis's depth-buffer lidar (another seed)")
     simulate_run(scenario, out / "simulator", seed=seed + 1, lidar_mode="depthbuffer", **window)

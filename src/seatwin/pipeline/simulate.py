@@ -12,6 +12,11 @@ if TYPE_CHECKING:
     from seatwin.sim import SimulationResult, SimulationSettings
 
 
+DEFAULT_SENSORS: tuple[str, ...] = ("lidar", "camera")
+"""The sensors of :func:`simulate_run` and ``seatwin simulate`` when none are named: the thesis's twin, the lidar and
+the three cameras (the radar on request)."""
+
+
 def simulate_run(
     scenario: str | Path | Scenario,
     out: str | Path,
@@ -27,8 +32,9 @@ def simulate_run(
 ) -> SimulationResult:
     """Simulate ``scenario`` (built-in name, .yaml, Gemini .csv — ``date`` for TimeOfDay CSVs — or a
     :class:`Scenario`) into the new run directory ``out`` from POSIX ``start`` or ``start_offset`` seconds after the
-    scenario's start (default: its start); ``changes`` override ``settings`` fields; ``on_frame(sensor, t,
-    frame, data)`` sees every frame (``--stream``)."""
+    scenario's start (default: its start); ``changes`` override ``settings`` fields (without ``settings``, the
+    sensors are :data:`DEFAULT_SENSORS` unless ``sensors`` is given); ``on_frame(sensor, t, frame, data)`` sees every
+    frame (``--stream``)."""
     from seatwin.scenario import Scenario
     from seatwin.scenario.load import load_scenario
     from seatwin.sim import simulate_scenario
@@ -38,6 +44,8 @@ def simulate_run(
 
         raise ParameterError("start_offset", "give a start time or an offset after the scenario's start, not both")
     sc = scenario if isinstance(scenario, Scenario) else load_scenario(str(scenario), date=date)
+    if settings is None:
+        changes.setdefault("sensors", DEFAULT_SENSORS)
     if start_offset is not None:
         span = sc.end - sc.start
         if not 0 <= float(start_offset) < span:
