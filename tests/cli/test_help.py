@@ -69,3 +69,25 @@ def test_bare_group_prints_help_and_exits_0(argv: list[str], capsys: pytest.Capt
     assert "Usage: seatwin" in out
     assert "Commands" in out
     assert err == ""
+
+
+def test_one_progress_vocabulary() -> None:
+    """Every verb with a progress bar spells it --progress/--no-progress; simulate's --quiet/-q is a hidden old spelling."""
+    spellings = set()
+    for _, command in ALL:
+        for p in getattr(command, "params", []):
+            if p.name in ("progress", "quiet"):
+                spellings.add((tuple(p.opts), tuple(p.secondary_opts), p.hidden))
+    assert (("--progress",), ("--no-progress",), False) in spellings
+    assert all(s == (("--progress",), ("--no-progress",), False) or s[2] for s in spellings), spellings
+
+
+def test_placeholders_are_one_vocabulary(capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("COLUMNS", "2000")
+    for argv in (["simulate", "--help"], ["sweep", "--help"], ["lidar", "snapshot", "--help"]):
+        assert run(argv) == 0
+        out = capsys.readouterr().out
+        assert "<float>" not in out and "<int>" not in out and "<path>" not in out and "[[" not in out, argv
+    assert run(["lidar", "snapshot", "--help"]) == 0
+    out = capsys.readouterr().out
+    assert all(m in out for m in ("raycast", "depthbuffer-legacy", "depthbuffer-plane")) and "(required)" in out
