@@ -34,6 +34,8 @@ SHOWS = {
         re.search(r"common \d+\.0\b", out) is None and "floor: AHED between" in out and "ranking by fidelity score" in out
     ),
     "seatwin scenario info": lambda out, err: "{" not in out and "…" not in out,
+    # results shown, not only written (issue 25, item 11)
+    "seatwin campaign": lambda out, err: "Summary" in out and "campaign.png" in out and "Token authentication" not in err,
 }
 
 
