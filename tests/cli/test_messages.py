@@ -94,3 +94,11 @@ def test_radar_simulate_help_shows_no_bound_that_admits_0(
     assert run(["radar", "simulate", "--help"]) == 0
     out = capsys.readouterr().out
     assert "x>=0.0" not in out and "more than 0" in out
+
+
+def test_simulate_summary_in_words(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """Issue 25, item 11: the frames per sensor in words, not a Python dict."""
+    argv = ["simulate", "ferry_crossing", "--out", str(tmp_path / "r"), "--offset", "30", "--duration", "0.5", "--no-progress"]
+    assert run([*argv, "--sensors", "lidar,radar"]) == 0
+    out = capsys.readouterr().out
+    assert "frames: ground truth 5, lidar 5" in out and "{" not in out

@@ -110,9 +110,10 @@ def register(app: typer.Typer) -> None:
             streamer.close()
             typer.echo(f"streamed to {stream}: {streamer.sent}")
         state = "completed" if result.completed else "INCOMPLETE (interrupted)"
+        frames = ", ".join(f"{sensor.replace('_', ' ')} {n}" for sensor, n in result.frames.items()) or "none"
         typer.echo(
             f"{state}: {result.simulated_s:.1f} s simulated in {result.wall_s:.1f} s "
-            f"(×{result.realtime_factor:.1f} real time); frames {result.frames}; recording in {result.run_dir}"
+            f"(×{result.realtime_factor:.1f} real time); frames: {frames}; recording in {result.run_dir}"
         )
         if not result.completed:
             raise typer.Exit(130)
