@@ -62,6 +62,7 @@ def test_ahed_reason_says_who_tracked_the_target() -> None:
         "Finn", "synthetic", None, "ahed", None, None, "skip", 10, 0, 0, 0, 10, **none, anees_real=None, anees_synthetic=None
     )
     assert line.ahed_reason == "neither dataset tracked the target"
+    assert line.to_dict()["ahed_reason"] == line.ahed_reason  # in compare's table and JSON, printed by the CLI
     assert "only the real dataset" in (replace(line, n_only_real=4).ahed_reason or "")
     assert "only the synthetic dataset" in (replace(line, n_only_synthetic=4).ahed_reason or "")
     assert replace(line, ahed=0.1, n_common=3).ahed_reason is None

@@ -146,7 +146,7 @@ class TargetComparison:
     score_reason: str | None = None
 
     def to_dict(self) -> dict:
-        return asdict(self)
+        return {**asdict(self), "ahed_reason": self.ahed_reason}
 
     @property
     def ahed_reason(self) -> str | None:
