@@ -39,12 +39,20 @@ def test_help_on_every_verb(capsys):
 @pytest.mark.slow
 def test_demo_end_to_end(tmp_path, capsys):
     out = tmp_path / "demo"
-    assert run(["demo", "--out", str(out), "--duration", "6"]) == 0
-    printed = capsys.readouterr().out
+    assert run(["demo", "--out", str(out), "--duration", "10"]) == 0
+    captured = capsys.readouterr()
+    printed = captured.out
     assert "report" in printed
-    assert (out / "report" / "index.html").stat().st_size > 10_000
+    html = (out / "report" / "index.html").read_text()
+    assert len(html) > 10_000
+    assert html.count("“Real” dataset:") == 1  # once, not once per tuning
     table = json.loads((out / "comparison.json").read_text())
     assert {t["tuning"] for t in table["targets"]} == {"synthetic", "real"}
+    # the demo's window (from 25 s): both targets tracked in both datasets, under both tunings
+    assert {t["target"] for t in table["targets"]} == {"Havfruen", "Finn"}
+    assert all(t["ahed"] is not None and t["n_common"] > 0 for t in table["targets"]), table["targets"]
+    assert "undefined" not in printed
+    assert "warning" not in captured.err  # reality and simulator do not share a seed
     assert len(list((out / "scenarios").glob("*.png"))) >= 5
     # a second demo into the same folder is refused with a clear message
     assert run(["demo", "--out", str(out)]) == 2

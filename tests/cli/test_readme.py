@@ -25,6 +25,20 @@ def readme_commands() -> list[str]:
     return cmds
 
 
+# What the README says a command shows, checked on its output (stdout, stderr), by the command's first words.
+SHOWS = {
+    # unmatched seeds: the real-vs-synthetic example's runs share no random draws (issue 25, item 1)
+    "seatwin compare": lambda out, err: "warning" not in err,
+    # one seed: integers as integers, "floor" explained, the tie said in words (issue 25, item 2)
+    "seatwin fidelity": lambda out, err: (
+        re.search(r"common \d+\.0\b", out) is None and "floor: AHED between" in out and "ranking by fidelity score" in out
+    ),
+    "seatwin scenario info": lambda out, err: "{" not in out and "…" not in out,
+    # results shown, not only written (issue 25, item 11)
+    "seatwin campaign": lambda out, err: "Summary" in out and "campaign.png" in out and "Token authentication" not in err,
+}
+
+
 def test_the_table_is_found():
     cmds = readme_commands()
     assert len(cmds) >= 20 and cmds[0].startswith("seatwin groundtruth")
@@ -45,7 +59,10 @@ def test_readme_commands_run_as_written(tmp_path, monkeypatch, capsys):
             continue
         argv = [a.replace("runs/", f"{tmp_path}/runs/") for a in shlex.split(cmd)[1:]]
         code = run(argv)
-        err = capsys.readouterr().err
+        out, err = capsys.readouterr()
         assert code == 0, f"{cmd}\n{err}"
+        for prefix, shows in SHOWS.items():
+            if cmd.startswith(prefix):
+                assert shows(out, err), f"{cmd}\n{out}\n{err}"
     if skipped and not shared:
         pytest.skip(f"{len(skipped)} README commands need ../shared/data (or what another writes from it), which is absent")

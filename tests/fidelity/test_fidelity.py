@@ -282,3 +282,20 @@ def test_untruthed_vessels_are_long_off_target_tracks_and_become_dont_care_truth
     boat = vessels_truth(vessels)["untruthed1"]
     np.testing.assert_allclose(boat.state_at(t[10])[[0, 2]], [600.0, 0.0])
     assert np.isnan(boat.state_at(t[0])).all() and np.isnan(boat.state_at(t[-1])).all()
+
+
+def test_fidelity_console_and_report_say_what_they_show(toy_mat, tmp_path, capsys):
+    """Issue 25, items 2 and 12: counts as integers, 'floor' explained (none with one seed), the HTML's AHED rows name
+    their tracking agent (JIPDA and GNN rows looked alike)."""
+    import re
+
+    out = tmp_path / "fid"
+    argv = ["fidelity", "joyride", str(toy_mat), "--out", str(out), "--fit-on", "first-half", "--seeds", "1"]
+    assert run([*argv, "--boot", "30", "--fit-boot", "5", "--no-progress"]) == 0
+    printed = capsys.readouterr().out
+    assert "floor: AHED between the model's own replicas" in printed and "needs --seeds 2 or more" in printed
+    assert re.search(r"common \d+(\.\d)?,", printed) and not re.search(r"common \d+\.0\b", printed)
+    page = (out / "index.html").read_text()
+    rows = re.findall(r"<tr>(.*?)</tr>", page, re.S)
+    ahed_rows = [re.sub(r"<[^>]+>", "|", r) for r in rows if "radar model (seed" in r]
+    assert ahed_rows and all("agent JIPDA" in r or "agent GNN" in r for r in ahed_rows), ahed_rows[:2]

@@ -28,6 +28,21 @@ def test_info_json_and_table(capsys):
     assert "Closest approach" in out and "Havfruen" in out
 
 
+def test_info_table_is_never_cut_and_says_the_environment_in_words(capsys, monkeypatch):
+    """Issue 25, item 13: on a narrow terminal the table cut "Havfr…", "ownsh…"; the environment was a Python dict."""
+    monkeypatch.setenv("COLUMNS", "40")
+    assert run(["scenario", "info", "ferry_crossing"]) == 0
+    out = capsys.readouterr().out
+    assert "…" not in out and "{" not in out
+    assert "environment: harbour default, water flat" in out
+    rows: dict[str, list[str]] = {}
+    for ln in out.splitlines():
+        if ln.split():
+            rows.setdefault(ln.split()[0], ln.split())  # the vessels table comes before the closest approaches
+    assert rows["Havfruen"][:3] == ["Havfruen", "target", "havfruen"]
+    assert rows["milliAmpere"][:3] == ["milliAmpere", "ownship", "milliampere"]
+
+
 def test_plot_writes_a_png(tmp_path: Path, capsys):
     out = tmp_path / "fig" / "cb.png"
     assert run(["scenario", "plot", "constant_bearing", "-o", str(out)]) == 0

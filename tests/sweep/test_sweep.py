@@ -207,3 +207,35 @@ def test_cli_bad_input(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "blur" in err and "--seeds" in err and "abc" in err and "--duration" in err and "--strengths" in err
     assert err.count("\n") == 5
+
+
+@pytest.mark.parametrize("kinds", [("noise",), ("noise", "drop", "mount")])
+def test_sweep_figure_title_and_legend_inside_and_off_the_points(kinds):
+    """Issue 25, item 12: sweep.png's title was cut on both sides, its legend covered the strength-0 point."""
+    import matplotlib.pyplot as plt
+
+    from seatwin.sweep.figure import sweep_figure
+
+    settings = SweepSettings(kinds=kinds, seeds=(1, 2, 3, 4, 5))
+
+    def row(kind, x, seed, score):
+        return SweepRow(kind, x, seed, seed + 1000, score, score, score, 0.1, 10, 0.0, 1)
+
+    rows = [row("reference", 0.0, s, 0.3) for s in settings.seeds]
+    for kind in kinds:
+        strengths = settings.strengths_of(degradation(kind))
+        rows += [row(kind, x, s, 0.9 - 0.1 * k) for k, x in enumerate(strengths) for s in settings.seeds]
+    fig = sweep_figure(SweepResult(settings, rows))
+    fig.set_dpi(110)  # as plot_sweep saves it: text grows a little faster than the page
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    page = fig.bbox
+    title = fig._suptitle.get_window_extent(renderer)
+    assert page.x0 <= title.x0 and title.x1 <= page.x1 and title.y1 <= page.y1
+    (legend,) = fig.legends
+    box = legend.get_window_extent(renderer)
+    assert page.x0 <= box.x0 and box.x1 <= page.x1 and page.y0 <= box.y0
+    for ax in fig.axes:
+        if ax.get_visible():
+            assert not box.overlaps(ax.get_window_extent(renderer))  # below the panels, not on a point
+    plt.close(fig)

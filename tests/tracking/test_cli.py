@@ -81,7 +81,7 @@ def test_track_lidar_recording(tmp_path) -> None:
     "args,msg",
     [
         (["--sensors", "camera"], "no camera labels"),
-        (["--sensors", "sonar"], "should be 'lidar', 'radar' or 'camera'"),
+        (["--sensors", "sonar"], "expected 'lidar', 'radar' or 'camera'"),
         (["--tuning", "nope"], "not a tuning preset"),
         (["--sensors", "radar"], "no radar topics"),
         (["--map", "/nonexistent/map.yaml"], "map raster"),

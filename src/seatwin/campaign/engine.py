@@ -258,6 +258,16 @@ def check_address(address: str, timeout_s: float = 5.0) -> None:
         raise ParameterError("address", f"cannot reach a Ray cluster at {address}: {exc.strerror or exc}") from None
 
 
+class _DropMessage:
+    """A logging filter dropping the records whose message starts with ``prefix``."""
+
+    def __init__(self, prefix: str) -> None:
+        self.prefix = prefix
+
+    def filter(self, record: Any) -> bool:
+        return not str(record.getMessage()).startswith(self.prefix)
+
+
 def _ray_init(address: str | None, workers: int | None) -> tuple[Any, bool]:
     """The ``ray`` module, initialised (a local instance of ``workers`` CPUs, or the cluster at ``address``), and
     whether this call started it (a Ray already initialised in this process is used as it is)."""
@@ -277,8 +287,14 @@ def _ray_init(address: str | None, workers: int | None) -> tuple[Any, bool]:
         with sigterm_kept():  # SIGTERM stays a Ctrl-C (ray.init installs an exit without finishing)
             if address:
                 ray.init(address=address, logging_level=logging.WARNING, log_to_driver=False)
-            else:
-                ray.init(num_cpus=workers, include_dashboard=False, logging_level=logging.WARNING, log_to_driver=False)
+            else:  # a local instance: Ray's note that token auth is on (its secure default) says nothing to act on
+                auth_log = logging.getLogger("ray._private.authentication.authentication_token_setup")
+                note = _DropMessage("Token authentication is enabled")
+                auth_log.addFilter(note)
+                try:
+                    ray.init(num_cpus=workers, include_dashboard=False, logging_level=logging.WARNING, log_to_driver=False)
+                finally:
+                    auth_log.removeFilter(note)
     except (ConnectionError, RuntimeError, ValueError) as exc:
         raise ParameterError("address" if address else "workers", f"cannot start Ray: {error_message(exc)}") from None
     return ray, True

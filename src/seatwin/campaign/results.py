@@ -18,6 +18,7 @@ from seatwin.campaign.engine import RunReport, write_atomic
 from seatwin.campaign.grid import CampaignGrid
 
 if TYPE_CHECKING:
+    from seatwin.campaign.summary import SettingSummary
     from seatwin.evaluation.compare import Comparison, TargetComparison
 
 RESULTS_CSV = "results.csv"
@@ -93,6 +94,10 @@ class CampaignResult:
     rows: list[dict[str, Any]] = field(default_factory=list)
     csv_path: Path | None = None
     json_path: Path | None = None
+    summary: list[SettingSummary] = field(default_factory=list)
+    """Per scenario, setting and tuning: the score over seeds, coverage, false tracks (:mod:`.summary`)."""
+    png_path: Path | None = None
+    """DIR/campaign.png, the scores per setting; None when no score is defined."""
 
     @property
     def n_failed(self) -> int:

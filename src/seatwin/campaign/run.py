@@ -1,4 +1,5 @@
-"""Run a campaign: its grid as jobs on the engine (Ray by default), then results.csv and campaign.json."""
+"""Run a campaign: its grid as jobs on the engine (Ray by default), then results.csv, campaign.json, the summary
+per setting and campaign.png."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ from seatwin.campaign.grid import SYNTHETIC, expand_grid
 from seatwin.campaign.job import campaign_job
 from seatwin.campaign.results import CampaignResult, write_results
 from seatwin.campaign.spec import CampaignSpec, load_campaign
+from seatwin.campaign.summary import CAMPAIGN_PNG, plot_campaign, summarise_campaign
 
 
 def run_campaign(
@@ -49,4 +51,8 @@ def run_campaign(
         progress=progress,
         keep=lambda job: job.params["kind"] == SYNTHETIC,  # the rows; a reference's tracks stay in its file
     )
-    return write_results(out, grid, report)
+    result = write_results(out, grid, report)
+    result.summary = summarise_campaign(result.rows, spec.varied)
+    if any(s.score is not None for s in result.summary):
+        result.png_path = plot_campaign(result.summary, Path(out) / CAMPAIGN_PNG, title=f"Fidelity campaign: {Path(out).name}")
+    return result

@@ -35,10 +35,14 @@ def register(app: typer.Typer) -> None:
         ),
         overwrite: bool = overwrite_option(),
     ) -> None:
+        from seatwin.errors import ParameterError
         from seatwin.pipeline.labels import camera_snapshot
 
         time_s = either(time_s, time_old, 0.0, "--offset", "--time")
-        snap = camera_snapshot(scenario, time_s, out, boxes=not no_boxes, harbour=harbour, overwrite=overwrite)
+        try:
+            snap = camera_snapshot(scenario, time_s, out, boxes=not no_boxes, harbour=harbour, overwrite=overwrite)
+        except ParameterError as exc:  # the library's ``time`` (seconds after the start) is this verb's --offset
+            raise ParameterError("--offset", exc.detail) if exc.param == "time" else exc from None
         for path in snap.files:
             labels = snap.labels[path.stem]
             names = ", ".join(f"{b.instance} ({b.visible_fraction:.2f} visible)" for b in labels) or "no vessel"

@@ -59,6 +59,39 @@ def register(app: typer.Typer) -> None:
                     f"{record.error}",
                     err=True,
                 )
-        typer.echo(f"wrote {result.csv_path} ({len(result.rows)} rows), {result.json_path}")
+        if result.summary:
+            typer.echo(_summary_table(result.summary))
+        wrote = [f"{result.csv_path} ({len(result.rows)} rows)", str(result.json_path)]
+        typer.echo("wrote " + ", ".join([*wrote, *([str(result.png_path)] if result.png_path else [])]))
         if result.n_failed:
             raise typer.Exit(1)
+
+
+def _summary_table(summary: list) -> str:  # type: ignore[type-arg]
+    """Per scenario, setting and tuning: the fidelity score (mean over seeds, min–max), coverage, false tracks."""
+    from seatwin.cli.output import text_table
+
+    def num(x: float | None, spec: str = ".3f") -> str:
+        return "–" if x is None else format(x, spec)
+
+    rows = [
+        [
+            s.scenario,
+            s.setting,
+            s.tuning,
+            str(s.seeds),
+            num(s.score),
+            "–" if s.score_min is None else f"{s.score_min:.3f}…{s.score_max:.3f}",
+            num(s.coverage, ".0%"),
+            f"{num(s.false_tracks_synthetic, '.1f')} / {num(s.false_tracks_real, '.1f')}",
+            str(s.failed) if s.failed else "",
+        ]
+        for s in summary
+    ]
+    header = ["scenario", "setting", "tuning", "seeds", "score", "over seeds", "coverage", "false tracks s/r", "failed"]
+    legend = (
+        "score: overall fidelity score against the reference run (0 = indistinguishable), mean and min…max over seeds; "
+        "coverage: of the instants where either run tracked a target, the share where both did; false tracks: mean per "
+        "run, synthetic / reference"
+    )
+    return text_table(header, rows, left=3, title="Summary") + "\n" + legend

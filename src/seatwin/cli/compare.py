@@ -196,6 +196,8 @@ def register(app: typer.Typer) -> None:
                 f"{ln['target']:<12} {ln['tuning']:<10} {ahed:>9} {ln['n_common']:>6} {ln['n_only_real']:>6} "
                 f"{ln['n_only_synthetic']:>6} {cd:>8} {score:>22}"
             )
+            if ln["ahed"] is None and ln["ahed_reason"]:
+                typer.echo(f"  AHED of {ln['target']} undefined: {ln['ahed_reason']}")
             if ln["score"] is None and ln["score_reason"]:
                 typer.echo(f"  score of {ln['target']} undefined: {ln['score_reason']}")
         mean = "undefined" if table["ahed_mean"] is None else f"{table['ahed_mean']:.4f}"
@@ -221,6 +223,8 @@ def register(app: typer.Typer) -> None:
                     )
         if result.camera is not None:
             _print_camera(result.camera)
+        for warning in result.warnings:
+            typer.echo(f"seatwin: warning: {warning}", err=True)
         for path in result.track_files:
             typer.echo(f"wrote {path}")
         if json_out is not None:

@@ -115,12 +115,20 @@ def register(app: typer.Typer) -> None:
         def num(x: float | None) -> str:
             return "–" if x is None or x != x else f"{x:.3f}"
 
+        def count(x: float) -> str:  # a mean over seeds: an integer unless the seeds differ
+            return f"{x:.0f}" if float(x).is_integer() else f"{x:.1f}"
+
         prim = result.primary
         lo, hi = prim.ahed_ci
         typer.echo(
             f"AHED {num(prim.ahed)} [{num(lo)}, {num(hi)}] ({result.primary_model} radar model, "
-            f"{result.primary_agent}, fit on {result.fit_on}, {result.seeds} seeds; common {prim.n_common:.1f}, "
-            f"only real {prim.n_only_real:.1f}, only synthetic {prim.n_only_synthetic:.1f})"
+            f"{result.primary_agent}, fit on {result.fit_on}, {result.seeds} seed{'s' if result.seeds != 1 else ''}; "
+            f"instants per seed: common {count(prim.n_common)}, only real {count(prim.n_only_real)}, "
+            f"only synthetic {count(prim.n_only_synthetic)})"
+        )
+        typer.echo(
+            "AHED per model and tracker; floor: AHED between the model's own replicas of seeds s and s + 1 (what "
+            "independent noise alone gives" + ("; needs --seeds 2 or more, – with one seed)" if result.seeds < 2 else ")")
         )
         for label, m in result.models.items():
             for agent, d in m.agents.items():
@@ -130,4 +138,10 @@ def register(app: typer.Typer) -> None:
             score = f"{num(r['score'])} [{num(r['ci_low'])}, {num(r['ci_high'])}]" if r["score"] is not None else "refused"
             why = f"  ({r['reason']})" if r["reason"] else ""
             typer.echo(f"  {k}. {r['model']:<13} score {score}  AHED {num(r['ahed'])}{why}")
+        ranked = [r for r in result.ranking() if r["score"] is not None]
+        if len(ranked) > 1 and ranked[0]["ci_high"] is not None and ranked[1]["score"] <= ranked[0]["ci_high"]:
+            typer.echo(
+                f"  {ranked[0]['model']} and {ranked[1]['model']} are not told apart: {ranked[1]['model']}'s score lies "
+                f"inside {ranked[0]['model']}'s 95 % interval (more --seeds narrow the intervals)"
+            )
         typer.echo("wrote " + ", ".join(str(p) for p in paths.values()))

@@ -43,6 +43,7 @@ FLAG_OF: dict[str, str] = {
     "n_boot": "--boot",
     "seed0": "--seed",
     "max_step_s": "--max-step",
+    "camera_hfov_deg": "--camera-hfov",
 }
 
 

@@ -19,11 +19,16 @@ def register(app: typer.Typer) -> None:
         scenario: str = typer.Argument(..., help="A built-in scenario name, a scenario .yaml or a Gemini .csv."),
         offset: float = typer.Option(0.0, "--offset", "-t", help="Start of the sweep, seconds after the scenario's start."),
         offset_old: float | None = old_spelling("--time", "--offset"),
-        out: Path = typer.Option(None, "--out", "-o", help="PNG file to write."),
+        out: Path = typer.Option(None, "--out", "-o", help="PNG file to write (required)."),
         output_old: str | None = old_spelling("--output", "--out"),
         preset: str = typer.Option("vlp16", "--lidar-preset", help="Lidar preset: vlp16 (1800 columns) or vlp16-thesis (1024)."),
         preset_old: str | None = old_spelling("--preset", "--lidar-preset"),
-        lidar_mode: str = typer.Option("raycast", "--lidar-mode", help="Lidar range model: raycast (exact) or depthbuffer."),
+        lidar_mode: str = typer.Option(
+            "raycast",
+            "--lidar-mode",
+            help="Lidar range model: raycast (exact), depthbuffer (the thesis's, with the spherical filter), "
+            "depthbuffer-legacy (without it) or depthbuffer-plane (rasterised, beam meets the pixel's plane).",
+        ),
         lidar_mode_old: str | None = old_spelling("--range-model", "--lidar-mode"),
         ray_drop: float = typer.Option(
             None, "--ray-drop", help="Ray-drop probability (default: the preset's, 0.8 as in the thesis)."
@@ -38,13 +43,8 @@ def register(app: typer.Typer) -> None:
         overwrite: bool = overwrite_option(),
     ) -> None:
         """One lidar sweep seen from above over the harbour, coloured by intensity, with the vessels' outlines."""
-        from seatwin.errors import InputError, ParameterError
-        from seatwin.outputs import check_output_file
-        from seatwin.scenario.load import load_scenario
-        from seatwin.sensors.lidar import lidar_for_scenario, sweep_to_world
-        from seatwin.sensors.lidar_config import lidar_preset
-        from seatwin.sensors.plot import plot_sweep_top_view
-        from seatwin.world.scene import Scene
+        from seatwin.errors import ParameterError
+        from seatwin.pipeline.lidar import lidar_snapshot
 
         time = either(offset, offset_old, 0.0, "--offset", "--time")
         output = either(out, None if output_old is None else Path(output_old), None, "--out", "--output")
@@ -53,32 +53,15 @@ def register(app: typer.Typer) -> None:
         drop = either(ray_drop, ray_drop_old, None, "--ray-drop", "--drop")
         if output is None:
             raise ParameterError("out", "give the PNG file to write (--out FILE.png)")
-        sc = load_scenario(scenario)
-        check_output_file(output, "out", inputs=[scenario, harbour, *sc.files], overwrite=overwrite)
-        cfg = lidar_preset(preset)
-        if drop is not None:
-            cfg = cfg.with_(drop_probability=drop)
-        if extent <= 0:
-            raise InputError("--extent", f"must be positive, got {extent}")
-        if sc.ownship is None:
-            raise InputError(sc.source, "the scenario has no ownship to carry the lidar")
-        start = sc.start + time
-        if not (sc.start <= start <= sc.end - cfg.period):
-            raise ParameterError(
-                "offset", f"{time} s is outside the scenario: a sweep must start within 0 … {sc.duration - cfg.period:.1f} s"
-            )
-        frame = int(round(time * cfg.rate_hz))
-        scene = Scene.from_scenario(sc, harbour=harbour)
-        lidar = lidar_for_scenario(sc, scene, config=cfg, range_model=range_model)
-        sweep = lidar.sweep(start, frame)
-        world = sweep_to_world(lidar, sweep)
-        plot_sweep_top_view(
-            lidar.scene,
-            sweep,
-            world,
+        snap = lidar_snapshot(
+            scenario,
+            time,
             output,
+            preset=preset,
+            lidar_mode=range_model,
+            ray_drop=drop,
             extent=extent,
-            ownship=sc.ownship.name,
-            title=f"{sc.name}  t = {time:.1f} s  ({cfg.name}, {range_model}, {len(sweep)} points)",
+            harbour=harbour,
+            overwrite=overwrite,
         )
-        typer.echo(f"wrote {output} ({len(sweep)} points)")
+        typer.echo(f"wrote {snap.path} ({snap.n_points} points)")

@@ -14,14 +14,17 @@ import warnings
 from collections.abc import Sequence
 
 import typer
+from typer._click.exceptions import NoArgsIsHelpError
 
 from seatwin import __version__
 from seatwin.cli.flags import flag_for
+from seatwin.cli.helptext import PlainHelpGroup
 from seatwin.errors import InputError, ParameterError
 from seatwin.outputs import OutputExistsError
 
 app = typer.Typer(
     name="seatwin",
+    cls=PlainHelpGroup,
     help="seatwin — a digital twin for testing how autonomous ships perceive the world.",
     no_args_is_help=True,
     add_completion=False,
@@ -107,6 +110,10 @@ def _run(argv: Sequence[str] | None) -> int:
         return 130
     except KeyboardInterrupt as exc:
         return _interrupted(exc)
+    except NoArgsIsHelpError as exc:  # bare ``seatwin`` or ``seatwin bag``: the help (Rich has printed it already)
+        if exc.format_message().strip():
+            typer.echo(exc.format_message())
+        return 0
     except typer.TyperException as exc:  # usage errors: unknown verb or option, bad value, missing option
         typer.echo(f"seatwin: error: {exc.format_message()}", err=True)
         return 2 if exc.exit_code in (1, 2) else exc.exit_code

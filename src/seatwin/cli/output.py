@@ -6,7 +6,7 @@ from __future__ import annotations
 import contextlib
 import sys
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
 from seatwin.errors import ParameterError
@@ -20,6 +20,18 @@ def split_list(text: str | None, param: str) -> tuple[str, ...] | None:
     if not parts:
         raise ParameterError(param, f"expected a comma-separated list, got {text!r}")
     return parts
+
+
+def text_table(header: Sequence[str], rows: Sequence[Sequence[str]], left: int = 1, title: str | None = None) -> str:
+    """A plain-text table wide enough for every cell (never cut, whatever the terminal's width): the first ``left``
+    columns left-aligned, the others right-aligned, under an optional ``title``."""
+    widths = [max(len(str(c)) for c in col) for col in zip(header, *rows, strict=True)]
+
+    def line(cells: Sequence[str]) -> str:
+        return "  ".join(str(c).ljust(w) if i < left else str(c).rjust(w) for i, (c, w) in enumerate(zip(cells, widths))).rstrip()
+
+    body = [line(header), "  ".join("-" * w for w in widths), *(line(r) for r in rows)]
+    return "\n".join(([title] if title else []) + body)
 
 
 def overwrite_option() -> Any:

@@ -100,7 +100,7 @@ def register(app: typer.Typer) -> None:
         config: Path = typer.Option(None, "--radar", metavar="RADAR.yaml", help="Radar configuration (default: built-in)."),
         seed: int = typer.Option(None, "--seed", help="Seed of the random draws (default: the scenario's)."),
         duration: float = typer.Option(
-            None, "--duration", min=0.0, help="Simulate only the first SECONDS (rotations in [start, start + SECONDS))."
+            None, "--duration", help="Simulate only the first SECONDS, more than 0 (rotations in [start, start + SECONDS))."
         ),
         overwrite: bool = overwrite_option(),
     ) -> None:

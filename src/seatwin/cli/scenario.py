@@ -114,39 +114,29 @@ def register(app: typer.Typer) -> None:
 
 
 def _print_summary(s: dict) -> None:  # type: ignore[type-arg]
-    from rich.console import Console
-    from rich.table import Table
+    """The summary as plain text: nothing cut to the terminal's width, the environment as ``key value`` words."""
+    from seatwin.cli.output import text_table
 
-    console = Console()
-    console.print(f"[bold]{s['name']}[/bold]  {s['description']}")
-    console.print(
+    env = s["environment"]
+    environment = ", ".join(f"{k} {v}" for k, v in env.items()) if isinstance(env, dict) else str(env)
+    typer.echo(f"{s['name'] or '(unnamed scenario)'}  {s['description']}".rstrip())
+    typer.echo(
         f"source {s['source']}\nstart {s['start_utc']} ({s['start']:.3f}), duration {s['duration_s']:.1f} s, "
-        f"{s['rate_hz']:g} Hz, environment {s['environment']}, rig {s['rig']}, seed {s['seed']}"
+        f"{s['rate_hz']:g} Hz, environment: {environment}, rig {s['rig']}, seed {s['seed']}"
     )
     water = any(v["on_water"] is not None for v in s["vessels"])
-    vt = Table(title="Vessels (speed in m/s)")
     cols = ["name", "role", "model", "samples", "min speed", "mean", "max", "distance_m"] + (["on water"] if water else [])
-    for col in cols:
-        vt.add_column(col, justify="right" if col not in ("name", "role", "model") else "left")
+    rows = []
     for v in s["vessels"]:
         sp = v["speed_mps"]
-        row = [
-            v["name"],
-            v["role"],
-            v["model"],
-            str(v["samples"]),
-            f"{sp['min']:.2f}",
-            f"{sp['mean']:.2f}",
-            f"{sp['max']:.2f}",
-            f"{v['distance_m']:.1f}",
-        ]
+        row = [v["name"], v["role"], v["model"], str(v["samples"]), f"{sp['min']:.2f}", f"{sp['mean']:.2f}", f"{sp['max']:.2f}"]
+        row.append(f"{v['distance_m']:.1f}")
         if water:
             row.append("–" if v["on_water"] is None else f"{100 * v['on_water']:.0f} %")
-        vt.add_row(*row)
-    console.print(vt)
-    ct = Table(title="Closest approach (at_s: seconds from the start)")
-    for col in ("vessels", "distance_m", "at_s"):
-        ct.add_column(col, justify="left" if col == "vessels" else "right")
-    for p in s["closest_approach"]:
-        ct.add_row(f"{p['a']} – {p['b']}", f"{p['distance_m']:.1f}", f"{p['time_from_start_s']:.1f}")
-    console.print(ct)
+        rows.append(row)
+    typer.echo("\n" + text_table(cols, rows, left=3, title="Vessels (speed in m/s)"))
+    approach = [
+        [f"{p['a']} – {p['b']}", f"{p['distance_m']:.1f}", f"{p['time_from_start_s']:.1f}"] for p in s["closest_approach"]
+    ]
+    title = "Closest approach (at_s: seconds from the start)"
+    typer.echo("\n" + text_table(["vessels", "distance_m", "at_s"], approach, title=title))

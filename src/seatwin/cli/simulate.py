@@ -75,7 +75,8 @@ def register(app: typer.Typer) -> None:
         camera_distortion: str | None = typer.Option(
             None, "--camera-distortion", metavar="K1,K2,T1,T2,K3", help="Plumb-bob distortion of the camera images."
         ),
-        quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar."),
+        progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar (lines on a pipe)."),
+        quiet: bool = typer.Option(False, "--quiet", "-q", hidden=True, help="Old spelling of --no-progress."),
         stream: str | None = typer.Option(
             None, "--stream", metavar="HOST:PORT", help="Also stream lidar clouds and radar spokes to a SensorStreaming server."
         ),
@@ -106,7 +107,7 @@ def register(app: typer.Typer) -> None:
             duration=duration,
             harbour=harbour,
             date=_date(date),
-            progress=not quiet,
+            progress=progress and not quiet,
             sensors=split_list(sensors, "sensors"),
             seed=seed,
             lidar_preset=lidar_preset,
@@ -125,9 +126,10 @@ def register(app: typer.Typer) -> None:
             streamer.close()
             typer.echo(f"streamed to {stream}: {streamer.sent}")
         state = "completed" if result.completed else "INCOMPLETE (interrupted)"
+        frames = ", ".join(f"{sensor.replace('_', ' ')} {n}" for sensor, n in result.frames.items()) or "none"
         typer.echo(
             f"{state}: {result.simulated_s:.1f} s simulated in {result.wall_s:.1f} s "
-            f"(×{result.realtime_factor:.1f} real time); frames {result.frames}; recording in {result.run_dir}"
+            f"(×{result.realtime_factor:.1f} real time); frames: {frames}; recording in {result.run_dir}"
         )
         if not result.completed:
             raise typer.Exit(130)

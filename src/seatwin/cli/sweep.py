@@ -4,8 +4,10 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 import typer
+from typer.core import TyperCommand
 
 from seatwin.cli.output import overwrite_option, split_list
 from seatwin.errors import ParameterError
@@ -14,7 +16,7 @@ _HELP = (
     "Fidelity sweep: does the fidelity score rank sensor models? A reference lidar model stands in for "
     "reality; copies made by deliberately wrong models — degraded, or cleaner than the reference — are "
     "compared with it through the tracker (fidelity score and AHED, thesis 5.2).\n\n"
-    "Per seed s, the reference model (VLP-16 ray casting with range noise 0.05 m, drop 0.8) is simulated "
+    "Per seed s, the reference model (VLP-16 ray casting; REFERENCE) is simulated "
     "with seed s + --reference-seed-offset (the 'real' run) and with seed s, and once per (kind, strength) "
     "with seed s; each is compared with the reference run of the other seed, as any real-versus-synthetic "
     "comparison is (no shared draws). The reference model's own distance is the floor. Kinds: noise "
@@ -55,11 +57,28 @@ def parse_strengths(text: str | None, kinds: Sequence[str]) -> dict[str, tuple[f
     return out
 
 
+class _SweepCommand(TyperCommand):
+    """``sweep``: the reference model and default strengths are filled into the help from
+    :data:`seatwin.sweep.degradations.DEGRADATIONS` (their one source) when the help is shown, so that
+    registering the verb does not import the simulator."""
+
+    def format_help(self, ctx: Any, formatter: Any) -> None:
+        from seatwin.cli.helptext import escape
+        from seatwin.sweep.degradations import describe_reference, describe_strengths
+
+        words = {"REFERENCE": escape(describe_reference()), "STRENGTHS": escape(describe_strengths())}
+        for item in [self, *self.params]:
+            for key, text in words.items():
+                if item.help and key in item.help:
+                    item.help = item.help.replace(key, text)
+        super().format_help(ctx, formatter)
+
+
 def register(app: typer.Typer) -> None:
-    @app.command("sweep", help=_HELP)
+    @app.command("sweep", help=_HELP, cls=_SweepCommand)
     def sweep_cmd(
         scenario: str = typer.Argument(
-            "ferry_crossing", metavar="[SCENARIO]", help="Built-in scenario name or scenario file (default ferry_crossing)."
+            "ferry_crossing", metavar="SCENARIO", help="Built-in scenario name or scenario file (default ferry_crossing)."
         ),
         out: Path = typer.Option(
             ...,
@@ -78,8 +97,7 @@ def register(app: typer.Typer) -> None:
             "--strengths",
             metavar="KIND=S,S;…",
             help="Strengths per kind, e.g. 'noise=0,0.2;mount=1,2' (a bare list with one kind), on either side of the "
-            "reference where the kind allows (noise 0.05 m, drop 0.8). Default: noise 0,0.015,0.1,0.2,0.4 m; "
-            "drop 0,0.5,0.9,0.95,0.98; dissipation 1; mount 0.5,1,2,4 deg.",
+            "reference (REFERENCE) where the kind allows. Default: STRENGTHS.",
         ),
         seeds: int = typer.Option(
             3, "--seeds", metavar="N", min=1, help="Repeat every point with seeds 1…N and show the spread."
@@ -119,7 +137,7 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         from seatwin.cli.output import progress_counter
         from seatwin.settings import validated
-        from seatwin.sweep import SweepSettings, plot_sweep, run_sweep, spearman_by_kind, summarise, write_results
+        from seatwin.sweep import SweepSettings, run_sweep, spearman_by_kind, summarise, write_sweep
 
         chosen = split_list(kinds, "kinds") or ()
         settings = validated(
@@ -137,8 +155,7 @@ def register(app: typer.Typer) -> None:
         )
         with progress_counter("sweep", progress, min_total=1) as advance:
             result = run_sweep(out, settings, workers=workers, address=address, progress=advance, overwrite=overwrite)
-        csv_path, json_path = write_results(out, result)
-        png = plot_sweep(result, out / "sweep.png")
+        csv_path, json_path, png = write_sweep(out, result)
         for kind, by_dir in spearman_by_kind(result, "score").items():
             means = ", ".join(
                 f"{s.strength:g}: {s.mean:.3f}" if s.mean is not None else f"{s.strength:g}: –"

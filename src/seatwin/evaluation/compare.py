@@ -146,7 +146,19 @@ class TargetComparison:
     score_reason: str | None = None
 
     def to_dict(self) -> dict:
-        return asdict(self)
+        return {**asdict(self), "ahed_reason": self.ahed_reason}
+
+    @property
+    def ahed_reason(self) -> str | None:
+        """Why AHED is undefined, in words (None when it is defined)."""
+        if self.ahed is not None:
+            return None
+        if self.n_common:
+            return "no common instant counted under the both-missing convention"
+        if self.n_only_real == self.n_only_synthetic == 0:
+            return "neither dataset tracked the target"
+        side = "real" if self.n_only_real else "synthetic"
+        return f"only the {side} dataset tracked the target (no instant where both did)"
 
 
 @dataclass

@@ -326,6 +326,11 @@ def write_fidelity(out_dir: str | Path, result: FidelityResult, html: bool = Tru
     return paths
 
 
+def _labelled(comparison: Any, tuning: str) -> Any:
+    """``comparison`` with ``tuning`` on it and on each target line (the tables show the lines' label: the agent)."""
+    return replace(comparison, tuning=tuning, targets=[replace(t, tuning=tuning) for t in comparison.targets])
+
+
 def _html(out: Path, result: FidelityResult) -> Path:
     from seatwin.fidelity.method import truth_of
     from seatwin.report import Clouds, ScenarioResult
@@ -340,9 +345,7 @@ def _html(out: Path, result: FidelityResult) -> Path:
     }[result.fit_on]
     agent_names = {"jipda": "JIPDA", "gnn": "GNN"}
     for label, m in result.models.items():
-        comps = [
-            replace(c, tuning=f"{result.tuning}, agent {agent_names.get(agent, agent)}") for agent, c in m.comparisons.items()
-        ]
+        comps = [_labelled(c, f"{result.tuning}, agent {agent_names.get(agent, agent)}") for agent, c in m.comparisons.items()]
         notes = [
             f"“Real” dataset: {result.dataset} (joyride, real radar plots, GNSS truth). “Synthetic” dataset: its replica "
             f"with the {label} radar model, seed {result.seed0}.",

@@ -111,6 +111,23 @@ def describe_dataset(spec: str | Path) -> str:
     return f"recording {Path(spec).name}"
 
 
+def shared_draws(real: str | Path, synthetic: str | Path) -> str | None:
+    """Why ``real`` and ``synthetic`` are not independent, or None: two recordings seatwin simulated from the same
+    scenario with the same seed share their random draws (noise, drops, clutter), so their distance understates
+    any real-versus-synthetic difference (docs/fidelity-score.md); with the same settings too they are the same run."""
+    runs = [_manifest(p) for p in (real, synthetic)]
+    meta = [(m or {}).get("metadata") or {} for m in runs]
+    if not all(m.get("settings") for m in meta) or any(m is None for m in runs):
+        return None  # a track file, an imported recording: its draws are its own
+    seeds = [m.get("seed") for m in runs]  # type: ignore[union-attr]  # both manifests are present (checked above)
+    if seeds[0] is None or seeds[0] != seeds[1] or meta[0].get("scenario") != meta[1].get("scenario"):
+        return None
+    what = f"both runs were simulated from {meta[0].get('scenario')} with seed {seeds[0]}"
+    if meta[0]["settings"] == meta[1]["settings"] and meta[0].get("start") == meta[1].get("start"):
+        return f"{what} and the same settings: they are the same run, so every distance is zero or sampling noise"
+    return f"{what}: they share their random draws, so their distance understates the difference; use different seeds"
+
+
 @dataclass
 class CompareResult:
     """The comparisons (one per tuning or pair), their table, and what was written."""
@@ -126,12 +143,16 @@ class CompareResult:
     """Lidar against lidar + camera AHED and the box comparison (:func:`camera_comparison`); None without cameras."""
     dont_care: dict[str, Any] | None = None
     """The vessels the score left out as don't-care regions, and their source; None when none were given."""
+    warnings: list[str] = field(default_factory=list)
+    """What makes the comparison weaker than it looks (:func:`shared_draws`); shown on the console and in the report."""
 
     def to_json(self) -> dict[str, Any]:
         """The JSON of ``seatwin compare --json``."""
         extra = {} if self.camera is None else {"camera": self.camera}
         if self.dont_care is not None:
             extra["dont_care"] = self.dont_care
+        if self.warnings:
+            extra["warnings"] = self.warnings
         return {"real": self.real, "synthetic": self.synthetic, "truth": self.truth, **self.table, **extra}
 
 
@@ -250,6 +271,7 @@ def compare_runs(
     )
     if ignored is not None:
         result.dont_care = {"source": str(dont_care), "vessels": ignored.names}
+    result.warnings = list(dict.fromkeys(w for r, s, _, _ in pairs if (w := shared_draws(r, s)) is not None))
     if report_dir is not None:
         from seatwin.perception.map_mask import load_mask
         from seatwin.report import write_comparison_report
@@ -259,9 +281,10 @@ def compare_runs(
         )
         name = scenario_name(truth)
         described = [(describe_dataset(r), describe_dataset(s)) for r, s, _, _ in pairs]
-        notes = [f"“Real” dataset: {r}. “Synthetic” dataset: {s}." for r, s in described]
+        notes = list(dict.fromkeys(f"“Real” dataset: {r}. “Synthetic” dataset: {s}." for r, s in described))  # once per pair
         if any(r.startswith("simulated") for r, _ in described):
             notes.append("The “real” side here is itself simulated: this compares two sensor models, not reality.")
+        notes += [f"Warning: {w}." for w in result.warnings]
         result.report = write_comparison_report(
             report_dir,
             comparisons,

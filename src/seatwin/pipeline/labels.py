@@ -186,7 +186,9 @@ def camera_snapshot(
     if not sc.start <= t <= sc.end:
         from seatwin.errors import ParameterError
 
-        raise ParameterError("time", f"{t - sc.start:.3f} s is outside the scenario (0 … {sc.end - sc.start:.3f} s)")
+        raise ParameterError(
+            "time", f"{t - sc.start:g} s is outside the scenario: expected 0 to {sc.end - sc.start:g} s after its start"
+        )
     config = CameraConfig()
     out = Path(out)
     inputs = [scenario, harbour] if not isinstance(scenario, Scenario) else [harbour]

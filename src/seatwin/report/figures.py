@@ -197,6 +197,13 @@ def clouds_figure(
     return to_png(fig)
 
 
+def ahed_axis_top(values: list[float | None]) -> float:
+    """The AHED axis' top: AHED lies in [0, 1], but small values must stay visible — 1.3 × the largest defined
+    value, at least 0.01, at most 1."""
+    defined = [v for v in values if v is not None and np.isfinite(v)]
+    return float(min(1.0, max(0.01, 1.3 * max(defined, default=1.0))))
+
+
 def ahed_figure(rows: list[dict], title: str) -> bytes:
     """Fig. 5.3: AHED per scenario × target, one bar per tuning."""
     plt = _plt()
@@ -215,7 +222,7 @@ def ahed_figure(rows: list[dict], title: str) -> bytes:
             if np.isnan(v):  # undefined: no common instant — shown as such, never as a zero bar
                 ax.text(xi, 0.02, "undefined", rotation=90, ha="center", va="bottom", fontsize=7, color="0.4")
     ax.set_xticks(np.arange(len(groups)), [f"{s}\n{t}" for s, t in groups], fontsize=8)
-    ax.set_ylim(0, 1)
+    ax.set_ylim(0, ahed_axis_top([r["ahed"] for r in rows]))
     ax.set_ylabel("AHED (5.34)")
     ax.grid(alpha=0.3, axis="y")
     ax.legend(fontsize=8)

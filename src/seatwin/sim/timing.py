@@ -28,10 +28,12 @@ def time_window(scenario_start: float, scenario_end: float, start: float | None,
     span = scenario_end - scenario_start
     off = 0.0 if start is None else float(start) - scenario_start
     if not -TIME_EPS_S <= off < span:
-        raise ParameterError("start", f"start {start!r} is outside the scenario's span [{scenario_start!r}, {scenario_end!r})")
+        raise ParameterError(
+            "start", f"{start:.3f} is outside the scenario: expected a POSIX time from {scenario_start:.3f} to {scenario_end:.3f}"
+        )
     off = max(off, 0.0)
     if duration is not None and not duration > 0:
-        raise ParameterError("duration", f"expected a positive number of seconds, got {duration!r}")
+        raise ParameterError("duration", f"expected a positive number of seconds, got {duration:g}")
     rel_end = span if duration is None else off + float(duration)
     if rel_end > span + TIME_EPS_S:
         raise ParameterError("duration", f"start + duration ends {rel_end - span:g} s past the scenario's end")

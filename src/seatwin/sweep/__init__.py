@@ -6,6 +6,7 @@ by degraded lidar models at increasing strength; AHED should rank with the stren
 
 from seatwin.sweep.degradations import DEGRADATIONS, Degradation, degradation, degradations
 from seatwin.sweep.figure import plot_sweep
+from seatwin.sweep.outputs import write_sweep
 from seatwin.sweep.results import KindSpearman, StrengthSummary, SweepResult, SweepRow, spearman_by_kind, summarise, write_results
 from seatwin.sweep.runner import run_sweep
 from seatwin.sweep.settings import SweepSettings
@@ -25,4 +26,5 @@ __all__ = [
     "spearman_by_kind",
     "summarise",
     "write_results",
+    "write_sweep",
 ]

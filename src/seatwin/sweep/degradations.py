@@ -4,10 +4,12 @@ Each kind's strength is in the unit of the parameter it changes; ``reference`` i
 of the reference model (standing in for reality) and a swept strength lies on either side of it
 within ``[lo, hi]``: beyond it (a degraded model) or, where the kind allows, below it (a
 *cleaner* model than reality — less noise, no drop — which a fidelity score must also see as
-wrong). Each kind maps a strength to fields of :class:`seatwin.sim.SimulationSettings`
+wrong); :func:`describe_reference` and :func:`describe_strengths` say it in words for
+``seatwin sweep --help`` (these numbers' one source).
+Each kind maps a strength to fields of :class:`seatwin.sim.SimulationSettings`
 (``simulate_scenario(..., **d.settings(strength))``):
 
-* ``noise`` — Gaussian range noise σ [m] (``range_noise``; reference 0.05 m, three times the
+* ``noise`` — Gaussian range noise σ [m] (``range_noise``; reference 0.1 m, well above the
   VLP-16 preset's 0.015 m, so that a cleaner model has room below it).
 * ``drop`` — ray-drop probability (``ray_drop``; the preset: 0.8, thesis 4.2.2; 0 = no drop).
 * ``dissipation`` — range-dependent return probability off (0) or on (1) (``dissipation``).
@@ -47,8 +49,9 @@ class Degradation:
         inside = (lo <= strength <= self.hi) if self.lo is not None else (lo < strength <= self.hi)
         if inside and strength != self.reference:
             return None
-        bounds = f"[{lo}, {self.hi}]" if self.lo is not None else f"({lo}, {self.hi}]"
-        return f"{self.kind} strength must be in {bounds} {self.unit} and differ from the reference {self.reference}"
+        bounds = f"[{lo:g}, {self.hi:g}]" if self.lo is not None else f"({lo:g}, {self.hi:g}]"
+        unit = f" {self.unit}" if self.unit else ""
+        return f"{self.kind} strength must be in {bounds}{unit} and differ from the reference {self.reference:g}"
 
     def direction(self, strength: float) -> str:
         """``degraded`` beyond the reference, ``cleaner`` below it."""
@@ -85,6 +88,25 @@ DEGRADATIONS: dict[str, Degradation] = {
         ),
     )
 }
+
+
+def _values(values: Sequence[float], unit: str) -> str:
+    return ",".join(f"{v:g}" for v in values) + (f" {unit}" if unit else "")
+
+
+def describe_reference() -> str:
+    """The reference model in words, from :data:`DEGRADATIONS` (e.g. "range noise σ 0.1 m, ray-drop probability 0.8, …")."""
+    return ", ".join(f"{d.kind} {_values([d.reference], d.unit)}" for d in DEGRADATIONS.values())
+
+
+def describe_strengths() -> str:
+    """Each kind's default strengths and allowed range in words, from :data:`DEGRADATIONS`."""
+    parts = []
+    for d in DEGRADATIONS.values():
+        hi = "∞)" if d.hi == float("inf") else f"{d.hi:g}]"
+        allowed = f"({d.reference:g}, {hi}" if d.lo is None else f"[{d.lo:g}, {hi} but {d.reference:g}"
+        parts.append(f"{d.kind} {_values(d.default_strengths, d.unit)} (any in {allowed})")
+    return "; ".join(parts)
 
 
 def reference_model() -> dict[str, Any]:
