@@ -83,6 +83,9 @@ def register(app: typer.Typer) -> None:
             None, "--classes", metavar="ID[,ID…]", help="Class ids the onnx detector keeps (default: 8, COCO 'boat')."
         ),
         progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar on long recordings."),
+        ignore_crc: bool = typer.Option(
+            False, "--ignore-crc", help="Read MCAP chunks whose CRC does not match, with a warning that counts them."
+        ),
     ) -> None:
         from seatwin.cli.output import check_output_file, progress_counter, split_list
         from seatwin.pipeline.track import TrackOptions, track_recording
@@ -103,12 +106,15 @@ def register(app: typer.Typer) -> None:
                 detector=detector,
                 model=None if model is None else str(model),
                 classes=None if classes is None else split_list(classes, "classes"),
+                ignore_crc=ignore_crc,
             ),
         )
         with progress_counter("tracking", enabled=progress) as advance:
             result = track_recording(recording, options, progress=advance)
         from seatwin.evaluation import write_tracks
 
+        if result.bad_crc:
+            typer.echo(f"warning: {recording}: {result.bad_crc} CRC mismatch(es) ignored (--ignore-crc)", err=True)
         result.tracks.source = str(out)
         write_tracks(out, result.tracks)
         typer.echo(
