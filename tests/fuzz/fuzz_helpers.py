@@ -115,6 +115,12 @@ def read_bag(path: Path) -> None:
         rec.ground_truth()
 
 
+def read_campaign(path: Path) -> None:
+    from seatwin.campaign.spec import load_campaign
+
+    load_campaign(path)
+
+
 def read_scenario(path: Path) -> None:
     from seatwin.scenario.load import load_scenario
 
@@ -168,6 +174,7 @@ TARGETS: dict[str, Target] = {
         Target("gnss_csv", read_gnss, True),
         Target("radar_csv", read_radar_csv, True),
         Target("joyride", read_joyride, False),
+        Target("campaign_yaml", read_campaign, True),
     )
 }
 
@@ -176,12 +183,15 @@ class MultiLineError(Exception):
     """An InputError whose message is not one line (the CLI promises one)."""
 
 
-def escape(target: str, path: Path) -> BaseException | None:
+def escape(target: str, path: Path, refused: list[InputError] | None = None) -> BaseException | None:
     """The exception other than InputError that reading ``path`` lets escape (a
-    :class:`MultiLineError` for an InputError message of several lines), or None."""
+    :class:`MultiLineError` for an InputError message of several lines), or None; an InputError
+    (the file refused) is appended to ``refused`` when given."""
     try:
         TARGETS[target].read(path)
     except InputError as exc:
+        if refused is not None:
+            refused.append(exc)
         if "\n" in str(exc) or "\r" in str(exc):
             try:
                 raise MultiLineError(str(exc)) from exc
@@ -276,6 +286,10 @@ def make_seeds(root: Path) -> dict[str, Path]:
         "name: ferry\nseed: 3\norigin: {lat: 63.4336, lon: 10.3926, height: 0.0}\n"
         "environment: {harbour: default, water: flat}\nrig: milliampere\ntrajectory: ferry.csv\nvessels:\n" + vessels
     )
+
+    from families import copy_campaign_seed
+
+    seeds["campaign_yaml"] = copy_campaign_seed(root / "campaign_yaml")
 
     truth = gt_synth.turning_vessel(duration=20.0)
     t = gt_synth.sample_times(gt_synth.T0, 20.0, 1.0)

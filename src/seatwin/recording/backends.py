@@ -235,8 +235,11 @@ class Ros1ScanBackend(Backend):
                     self._connection(hdr, body, conns)
                 continue
             inner = b"".join(inflate_chunk(self.path, at, hdr, body, self._options))
-            for ihdr, ibody, _ in records(inner):
-                iop = ihdr.get("op", b"\x00")[0]
+            ipos = 0
+            for ihdr, ibody, iend in records(inner):
+                if len(ihdr.get("op", b"")) != 1:  # e.g. zeros: stop at once, not after millions of empty records
+                    raise InputError(self.path, f"corrupt ROS 1 bag: chunk at byte {at}: a record without op at offset {ipos}")
+                iop, ipos = ihdr["op"][0], iend
                 if iop == OP_CONN:
                     self._connection(ihdr, ibody, conns)
                 elif iop == OP_MSG:

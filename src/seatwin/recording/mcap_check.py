@@ -89,6 +89,46 @@ def _name(op: int) -> str:
     return _NAMES.get(op, f"record 0x{op:02x}")
 
 
+_CHUNK_OPS = {0x03: "Schema", 0x04: "Channel", 0x05: "Message"}
+_MESSAGE_HEAD = 22  # channel id, sequence, log time, publish time
+
+
+class _ChunkRecords:
+    """Walks the records inside a chunk as its bytes arrive in pieces: each must be a Schema, Channel
+    or Message (MCAP spec), a Message at least its fixed fields long, and the last one must end with
+    the chunk — zeros or junk stop here at once, not after millions of empty records in a reader."""
+
+    def __init__(self) -> None:
+        self.head = b""
+        self.skip = 0
+        self.offset = 0
+
+    def feed(self, piece: bytes) -> None:
+        i, n = 0, len(piece)
+        while i < n:
+            if self.skip:
+                take = min(self.skip, n - i)
+                self.skip -= take
+                i += take
+                continue
+            part = piece[i : i + 9 - len(self.head)]
+            self.head += part
+            i += len(part)
+            if len(self.head) == 9:
+                op, length = _HEAD.unpack(self.head)
+                self.head = b""
+                if op not in _CHUNK_OPS:
+                    raise Inflated(f"record at offset {self.offset} of its records has opcode 0x{op:02x}; expected 0x03–0x05")
+                if op == 0x05 and length < _MESSAGE_HEAD:
+                    raise Inflated(f"Message at offset {self.offset} of its records has length {length} < {_MESSAGE_HEAD}")
+                self.offset += 9 + length
+                self.skip = length
+
+    def finish(self) -> None:
+        if self.head or self.skip:
+            raise Inflated(f"the last record (ending at offset {self.offset}) runs past the end of its records")
+
+
 class _Checker:
     def __init__(self, path: Path, f: BinaryIO, size: int, options: ReadOptions) -> None:
         self.path, self.f, self.size, self.options = path, f, size, options
@@ -137,6 +177,7 @@ class _Checker:
                 f"over the per-file budget of {self.options.total_bytes}",
             )
         value = 0
+        walk = _ChunkRecords()
         try:
             if comp == "":
                 if rlen != usize:
@@ -148,6 +189,7 @@ class _Checker:
                     if not piece:
                         raise Inflated(f"ends {left} bytes early")
                     left -= len(piece)
+                    walk.feed(piece)
                     if crc:
                         value = zlib.crc32(piece, value)
             else:
@@ -156,8 +198,10 @@ class _Checker:
                 if rlen > self.options.chunk_bytes + PIECE:
                     raise Inflated(f"holds {rlen} compressed bytes, over the per-chunk budget of {self.options.chunk_bytes}")
                 for piece in inflate_pieces(comp, self.read(start, rlen), usize, self.options.chunk_bytes):
+                    walk.feed(piece)
                     if crc:
                         value = zlib.crc32(piece, value)
+            walk.finish()
         except Inflated as exc:
             raise InputError(self.path, f"corrupt MCAP: Chunk at byte {at} ({comp or 'uncompressed'}): {exc.reason}") from None
         if crc and value != crc:
