@@ -134,6 +134,10 @@ class _Checker:
         self.path, self.f, self.size, self.options = path, f, size, options
         self.inflated = 0
         self.bad_crc = 0
+        self.pending: list[tuple[int, int, int, int]] = []
+        """Uncompressed chunks with a CRC: (record offset, records offset, length, stored CRC)."""
+        self.data_crc: tuple[int, int, int] | None = None
+        """(stored, computed, Data End offset) once the Data End record is read, if it holds a CRC."""
 
     def fail(self, what: str, at: int, field: str, value: int, limit: int) -> InputError:
         return InputError(self.path, f"corrupt MCAP: {what} at byte {at}: {field} {value} exceeds {limit}")
@@ -182,16 +186,10 @@ class _Checker:
             if comp == "":
                 if rlen != usize:
                     raise Inflated(f"holds {rlen} bytes, but declares {usize}")
-                self.f.seek(start)
-                left = rlen
-                while left:
-                    piece = self.f.read(min(left, PIECE))
-                    if not piece:
-                        raise Inflated(f"ends {left} bytes early")
-                    left -= len(piece)
-                    walk.feed(piece)
-                    if crc:
-                        value = zlib.crc32(piece, value)
+                self.plain_records(start, rlen)  # headers only (seek); the CRC waits for the data section's
+                if crc:
+                    self.pending.append((at, start, rlen, crc))
+                return
             else:
                 if comp not in ("zstd", "lz4"):
                     raise Inflated(f"unknown compression {comp!r}; expected zstd, lz4 or none")
@@ -206,6 +204,39 @@ class _Checker:
             raise InputError(self.path, f"corrupt MCAP: Chunk at byte {at} ({comp or 'uncompressed'}): {exc.reason}") from None
         if crc and value != crc:
             self.crc_mismatch(f"Chunk at byte {at}", crc, value)
+
+    def plain_records(self, start: int, rlen: int) -> None:
+        """The records of an uncompressed chunk, header by header (:class:`_ChunkRecords`' rules)."""
+        pos, end = start, start + rlen
+        while pos < end:
+            raw = self.read(pos, 9)
+            if len(raw) < 9 or pos + 9 > end:
+                raise Inflated(f"the record at offset {pos - start} runs past the end of its records")
+            op, length = _HEAD.unpack(raw)
+            if op not in _CHUNK_OPS:
+                raise Inflated(f"record at offset {pos - start} of its records has opcode 0x{op:02x}; expected 0x03–0x05")
+            if op == 0x05 and length < _MESSAGE_HEAD:
+                raise Inflated(f"Message at offset {pos - start} of its records has length {length} < {_MESSAGE_HEAD}")
+            if length > end - pos - 9:
+                raise Inflated(f"the record at offset {pos - start} runs past the end of its records")
+            pos += 9 + length
+
+    def finish_crcs(self) -> None:
+        """The CRCs of the uncompressed chunks — read only when the data section's CRC is absent or does
+        not match (one pass over the file, not two) — then the data section's own."""
+        if self.data_crc is None or self.data_crc[0] != self.data_crc[1]:
+            for at, start, rlen, crc in self.pending:
+                self.f.seek(start)
+                value, left = 0, rlen
+                while left:
+                    piece = self.f.read(min(left, PIECE))
+                    left -= len(piece)
+                    value = zlib.crc32(piece, value)
+                if value != crc:
+                    self.crc_mismatch(f"Chunk at byte {at}", crc, value)
+        if self.data_crc is not None and self.data_crc[0] != self.data_crc[1]:
+            at, stored, value = self.data_crc[2], self.data_crc[0], self.data_crc[1]
+            self.crc_mismatch(f"Data End at byte {at} (data section)", stored, value)
 
     def crc_mismatch(self, what: str, stored: int, computed: int) -> None:
         if not self.options.ignore_crc:
@@ -225,8 +256,7 @@ class _Checker:
             piece = self.f.read(min(left, PIECE))
             left -= len(piece)
             value = zlib.crc32(piece, value)
-        if value != stored:
-            self.crc_mismatch(f"Data End at byte {at} (data section)", stored, value)
+        self.data_crc = (stored, value, at)
 
     def chunk_index(self, at: int, length: int, data_end: int) -> None:
         body, end = at + 9, at + 9 + length
@@ -297,6 +327,7 @@ def check_mcap(path: str | Path, options: ReadOptions | None = None) -> McapLayo
         finished = footer_at >= 8 and c.read(size - 8, 8) == MAGIC
         if not finished:
             end, truncated = c.walk(8, size, True, size)
+            c.finish_crcs()
             return McapLayout(size, False, size, end, truncated, c.bad_crc)
         raw = c.read(footer_at, 29)
         op, length, summary_start, summary_offset_start = struct.unpack_from("<BQQQ", raw)
@@ -314,4 +345,5 @@ def check_mcap(path: str | Path, options: ReadOptions | None = None) -> McapLayo
         c.walk(8, data_end, False, data_end)
         if summary_start:
             c.walk(summary_start, footer_at, False, data_end)
+        c.finish_crcs()
         return McapLayout(size, True, data_end, size, False, c.bad_crc)
