@@ -163,6 +163,9 @@ def measure_families(argv: list[str]) -> None:
                     slowest = max(slowest, took)
                     if key is not None:
                         types[key] += 1
+                        if ans is not None:  # an escape may leave the process broken (a half-imported module): start afresh
+                            worker.stop()
+                            worker = _Worker(memory)
                         if save is not None:
                             d = save / family / target
                             d.mkdir(parents=True, exist_ok=True)
