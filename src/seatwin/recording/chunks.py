@@ -110,12 +110,3 @@ def inflate_pieces(kind: str, data: bytes | memoryview, declared: int, budget: i
         raise Inflated(f"corrupt {kind} data: {type(exc).__name__}: {' '.join(str(exc).split())[:200]}") from None
     if total != declared:
         raise Inflated(f"inflates to {total} bytes, but declares {declared}")
-
-
-def inflate(kind: str, data: bytes | memoryview, declared: int, budget: int) -> bytes:
-    """The whole output of :func:`inflate_pieces` (at most ``declared`` bytes are ever held)."""
-    if kind == "none" or kind == "":
-        if len(data) != declared:
-            raise Inflated(f"holds {len(data)} bytes, but declares {declared}")
-        return bytes(data)
-    return b"".join(inflate_pieces(kind, data, declared, budget))

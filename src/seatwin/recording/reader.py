@@ -216,7 +216,10 @@ def _open_backend(bag: Path, fmt: str, options: ReadOptions, keep: list[Readable
 
 
 class Recording:
-    """A bag opened for reading (see the module docstring). Use as a context manager or call :meth:`close`."""
+    """A bag opened for reading (see the module docstring). Use as a context manager or call :meth:`close`.
+
+    ``options``: decompression budgets and ``ignore_crc`` (:class:`~seatwin.recording.chunks.ReadOptions`);
+    ``bad_crc``: CRC mismatches read anyway (only with ``ignore_crc``)."""
 
     def __init__(self, path: str | os.PathLike[str], options: ReadOptions | None = None) -> None:
         self.path = Path(path)

@@ -59,7 +59,9 @@ def chunk_size(hdr: dict[str, bytes]) -> int | None:
     return struct.unpack("<I", raw)[0] if raw is not None and len(raw) == 4 else None
 
 
-def inflate_chunk(path: Path, at: int, hdr: dict[str, bytes], body: memoryview, options: ReadOptions) -> Iterator[bytes]:
+def inflate_chunk(
+    path: Path, at: int, hdr: dict[str, bytes], body: memoryview, options: ReadOptions
+) -> Iterator[bytes | memoryview]:
     """A chunk record's data, inflated in pieces within ``options``' per-chunk budget and its ``size``;
     an :class:`InputError` naming the file and the chunk's byte offset if it does not inflate as declared."""
     comp = hdr.get("compression", b"none").decode("ascii", "replace")
@@ -73,7 +75,7 @@ def inflate_chunk(path: Path, at: int, hdr: dict[str, bytes], body: memoryview, 
                 raise Inflated(f"holds {len(body)} bytes, but declares {size}")
             if size > options.chunk_bytes:
                 raise Inflated(f"declares {size} bytes, over the per-chunk budget of {options.chunk_bytes}")
-            yield bytes(body)
+            yield body  # a view: no copy
             return
         if comp not in ("bz2", "lz4"):
             raise Inflated(f"unknown compression {comp!r}; expected none, bz2 or lz4")
