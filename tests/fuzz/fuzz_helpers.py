@@ -162,16 +162,16 @@ def read_bag(path: Path) -> None:
         rec.ground_truth()
 
 
-def read_scenario(path: Path) -> None:
-    from seatwin.scenario.load import load_scenario
-
-    load_scenario(path)
-
-
 def read_campaign(path: Path) -> None:
     from seatwin.campaign.spec import load_campaign
 
     load_campaign(path)
+
+
+def read_scenario(path: Path) -> None:
+    from seatwin.scenario.load import load_scenario
+
+    load_scenario(path)
 
 
 def read_tracks(path: Path) -> None:
@@ -230,17 +230,20 @@ class MultiLineError(Exception):
     """An InputError whose message is not one line (the CLI promises one)."""
 
 
-def escape(target: str, path: Path) -> BaseException | None:
+def escape(target: str, path: Path, refused: list[InputError] | None = None) -> BaseException | None:
     """The exception other than InputError that reading ``path`` lets escape (a
-    :class:`MultiLineError` for an InputError message of several lines), or None."""
-    return outcome(target, path)[0]
+    :class:`MultiLineError` for an InputError message of several lines), or None; an InputError
+    (the file refused) is appended to ``refused`` when given."""
+    return outcome(target, path, refused)[0]
 
 
-def outcome(target: str, path: Path) -> tuple[BaseException | None, bool]:
+def outcome(target: str, path: Path, refused: list[InputError] | None = None) -> tuple[BaseException | None, bool]:
     """(what :func:`escape` returns, whether ``path`` was read without any error)."""
     try:
         TARGETS[target].read(path)
     except InputError as exc:
+        if refused is not None:
+            refused.append(exc)
         if "\n" in str(exc) or "\r" in str(exc):
             try:
                 raise MultiLineError(str(exc)) from exc
@@ -336,12 +339,9 @@ def make_seeds(root: Path) -> dict[str, Path]:
         "environment: {harbour: default, water: flat}\nrig: milliampere\ntrajectory: ferry.csv\nvessels:\n" + vessels
     )
 
-    seeds["campaign_yaml"] = _own_dir(root, "campaign_yaml") / "campaign.yaml"
-    seeds["campaign_yaml"].write_text(
-        "scenarios: [ferry_crossing]\nseeds: [1, 2]\nduration: 5\noffset: 2.5\n"
-        "synthetic: {ray_drop: [0.0, 0.1], range_noise: [0.02, 0.05]}\nreference: {ray_drop: 0.05}\n"
-        "tunings: [synthetic]\nreference_seed_offset: 1000\ncomparison: {gate: 10.0}\n"
-    )
+    from families import copy_campaign_seed
+
+    seeds["campaign_yaml"] = copy_campaign_seed(root / "campaign_yaml")
 
     truth = gt_synth.turning_vessel(duration=20.0)
     t = gt_synth.sample_times(gt_synth.T0, 20.0, 1.0)

@@ -13,7 +13,8 @@ from fuzz_helpers import BINARY_KINDS, FAMILY_KINDS, TARGETS, TEXT_KINDS, apply,
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-TEXT_TARGETS = [n for n, t in TARGETS.items() if t.text and n != "rosbag2_yaml"]
+# campaign_yaml is fuzzed by the yaml family only (families.py); its byte-level escapes belong to issue #20's YAML part
+TEXT_TARGETS = [n for n, t in TARGETS.items() if t.text and n not in ("rosbag2_yaml", "campaign_yaml")]
 BAG_TARGETS = ["ros1", "mcap", "sqlite3"]
 _SETTINGS = dict(deadline=None, derandomize=True, database=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 

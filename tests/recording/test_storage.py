@@ -4,6 +4,7 @@ ROS 1 the same messages), and bags cut short read back as a prefix in write orde
 from __future__ import annotations
 
 import sqlite3
+import struct
 from pathlib import Path
 
 import numpy as np
@@ -101,8 +102,31 @@ def test_mcap_byte_identical_to_rosbags(tmp_path: Path, monkeypatch: pytest.Monk
     _ours("mcap", tmp_path / "ours" / "bag", as_rosbags)
     _rosbags("mcap", tmp_path / "theirs" / "bag")
     ours, theirs = ((tmp_path / d / "bag" / "bag.mcap").read_bytes() for d in ("ours", "theirs"))
-    assert len(ours) > 5_000_000 and ours == theirs
+    assert len(ours) > 5_000_000 and ours != theirs  # rosbags writes no CRCs (0); ours are set …
+    assert _without_crcs(ours) == theirs  # … and are the only difference
+    from mcap.stream_reader import StreamReader
+
+    n = sum(1 for _ in StreamReader(str(tmp_path / "ours/bag/bag.mcap"), validate_crcs=True).records)
+    assert n > 100  # mcap's own reader checks every chunk CRC and the data-section CRC
     assert (tmp_path / "ours/bag/metadata.yaml").read_text() == (tmp_path / "theirs/bag/metadata.yaml").read_text()
+
+
+def _without_crcs(data: bytes) -> bytes:
+    """``data`` (an MCAP file) with every chunk's ``uncompressed_crc`` and the data-section CRC set to 0."""
+    out = bytearray(data)
+    pos = 8
+    while pos < len(out) - 8:
+        op, length = struct.unpack_from("<BQ", out, pos)
+        if op == 0x06:
+            assert struct.unpack_from("<I", out, pos + 9 + 24)[0] != 0
+            struct.pack_into("<I", out, pos + 9 + 24, 0)
+        elif op == 0x0F:
+            assert struct.unpack_from("<I", out, pos + 9)[0] != 0
+            struct.pack_into("<I", out, pos + 9, 0)
+        elif op == 0x02:
+            break
+        pos += 9 + length
+    return bytes(out)
 
 
 def test_sqlite3_identical_to_rosbags(tmp_path: Path, as_rosbags: str) -> None:

@@ -87,6 +87,9 @@ def register(app: typer.Typer) -> None:
         ),
         progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar on long recordings."),
         overwrite: bool = overwrite_option(),
+        ignore_crc: bool = typer.Option(
+            False, "--ignore-crc", help="Read MCAP chunks whose CRC does not match, with a warning that counts them."
+        ),
     ) -> None:
         from seatwin.cli.output import progress_counter, split_list
         from seatwin.outputs import check_output_file
@@ -108,12 +111,15 @@ def register(app: typer.Typer) -> None:
                 detector=detector,
                 model=None if model is None else str(model),
                 classes=None if classes is None else split_list(classes, "classes"),
+                ignore_crc=ignore_crc,
             ),
         )
         with progress_counter("tracking", enabled=progress) as advance:
             result = track_recording(recording, options, progress=advance)
         from seatwin.evaluation import write_tracks
 
+        if result.bad_crc:
+            typer.echo(f"warning: {recording}: {result.bad_crc} CRC mismatch(es) ignored (--ignore-crc)", err=True)
         result.tracks.source = str(out)
         write_tracks(out, result.tracks)
         typer.echo(

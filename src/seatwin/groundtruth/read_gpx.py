@@ -50,7 +50,7 @@ def read_gpx(path: str | Path) -> AntennaLog:
     try:
         gpx = gpxpy.parse(text)
     except gpxpy.gpx.GPXXMLSyntaxException as exc:
-        msg = str(exc).removeprefix("Error parsing XML: ")
+        msg = " ".join(str(exc).removeprefix("Error parsing XML: ").split())  # the parser's message may span lines
         m = re.search(r"line (\d+)", msg)
         raise InputError(path, f"not well-formed XML: {msg}", where=f"line {m.group(1)}" if m else None) from None
     except gpxpy.gpx.GPXException as exc:

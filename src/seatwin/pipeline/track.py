@@ -60,6 +60,7 @@ class TrackOptions(Settings):
     classes: tuple[int, ...] | None = Field(
         None, description="Class ids the onnx detector keeps (default: COCO 8, boat; empty: every class)."
     )
+    ignore_crc: bool = Field(False, description="Read MCAP chunks whose CRC does not match (counted in the result).")
 
 
 @dataclass
@@ -73,6 +74,8 @@ class TrackingResult:
     n_tracks: int
     n_confirmed: int
     elapsed_s: float
+    bad_crc: int = 0
+    """MCAP chunks read despite a CRC mismatch (``ignore_crc``)."""
 
 
 def track_scans(
@@ -187,7 +190,7 @@ def track_recording(
     from seatwin.perception.map_mask import NoMask, load_mask
     from seatwin.perception.measurements import MeasurementKind
     from seatwin.perception.radar import RadarPlots
-    from seatwin.recording import open_bag
+    from seatwin.recording import ReadOptions, open_bag
     from seatwin.tracking import load_tuning
 
     camera = camera_detector(options.detector, options.model, options.classes)
@@ -196,7 +199,8 @@ def track_recording(
 
         raise ParameterError("detector", "the onnx detector reads the camera images: track with camera among the sensors")
     t_start = _time.perf_counter()
-    with open_bag(path) as rec:
+    with open_bag(path, ReadOptions.from_env(ignore_crc=options.ignore_crc)) as rec:
+        bad_crc = rec.bad_crc
         hints = tracking_hints(rec.manifest)
         cfg = load_tuning(options.tuning or hints.get("tuning") or "real")
         mask = load_mask(options.map_spec if options.map_spec is not None else map_hint(rec.manifest, rec.run_dir))
@@ -234,4 +238,5 @@ def track_recording(
         len(np.unique(tracks.track_id)),
         len(np.unique(tracks.track_id[tracks.confirmed])),
         _time.perf_counter() - t_start,
+        bad_crc,
     )

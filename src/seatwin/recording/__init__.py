@@ -1,5 +1,6 @@
 """Recording: ROS messages (thesis ch. 4.2.5, Table 4.2), bag writing and reading in MCAP, SQLite3 and ROS 1."""
 
+from seatwin.recording.chunks import ReadOptions
 from seatwin.recording.config import FORMATS, TopicConfig, ros_name
 from seatwin.recording.messages import StaticTransform, VesselPose, mount_rotation
 from seatwin.recording.pointcloud import RADAR_LAYOUT, VLP16_LAYOUT, Field, Layout, dtype_from_fields, pack, unpack
@@ -14,6 +15,7 @@ __all__ = [
     "ImageFrame",
     "Layout",
     "PointCloud",
+    "ReadOptions",
     "Recording",
     "RecordingError",
     "RecordingWriter",

@@ -6,17 +6,15 @@ order); when those refuse a bag, the recovery scanners read it front to back (fi
 the last complete chunk:
 
 * MCAP without summary/footer → ``mcap``'s non-seeking :class:`~mcap.stream_reader.StreamReader`;
-* rosbag2 without ``metadata.yaml`` → the storage file itself (a SQLite3 hot journal of an
-  interrupted transaction is rolled back first, as SQLite does on any normal open);
+* rosbag2 without ``metadata.yaml`` → the storage file itself (a SQLite3 file with a hot journal
+  of an interrupted transaction is read from a rolled-back copy: :mod:`~seatwin.recording.sqlite_check`);
 * ROS 1 bag without index (``index_pos = 0``) → a chunk scanner here.
 """
 
 from __future__ import annotations
 
-import bz2
 import contextlib
 import mmap
-import sqlite3
 import struct
 from collections.abc import Iterator
 from dataclasses import dataclass, field
@@ -29,6 +27,8 @@ from rosbags.typesys.msg import normalize_msgtype
 from rosbags.typesys.store import Typestore
 
 from seatwin.errors import InputError
+from seatwin.recording.chunks import ReadOptions
+from seatwin.recording.ros1_check import OP_CHUNK, OP_CONN, OP_MSG, fields, inflate_chunk, records
 
 RawMessage = tuple[str, str, int, bytes]
 
@@ -131,11 +131,11 @@ class McapScanBackend(Backend):
     """An MCAP file without footer/summary (or one rosbags refuses), read record by record up to the
     last complete one. ``ros1``-encoded channels are decoded as ROS 1 messages."""
 
-    def __init__(self, path: Path) -> None:
+    def __init__(self, path: Path, options: ReadOptions | None = None) -> None:
         from seatwin.recording.mcap_check import check_mcap
 
         super().__init__(path=path, format="mcap", recovered=True)
-        self._layout = check_mcap(path)  # every record it lets through fits in the file (issue #14)
+        self._layout = check_mcap(path, options)  # every record it lets through fits in the file (issue #14)
         # a finished file rosbags refused (e.g. another profile): read it in full, not "recovered"
         self.recovered = not self._layout.finished
         for topic, _, ts, _ in self._scan(None, want_data=False):
@@ -204,59 +204,13 @@ class _Bounded:
         return self.f.read(left if n is None or n < 0 else min(n, left))
 
 
-def rollback_sqlite_journal(db: Path) -> bool:
-    """Roll back an interrupted transaction (hot ``-journal``) as SQLite does on open; True if there was one."""
-    journal = db.with_name(db.name + "-journal")
-    if not journal.exists() or journal.stat().st_size == 0:
-        return False
-    try:
-        con = sqlite3.connect(db)
-        try:
-            con.execute("SELECT count(*) FROM sqlite_master").fetchone()
-        finally:
-            con.close()
-    except sqlite3.Error as exc:
-        raise InputError(db, f"cannot roll back the interrupted SQLite transaction: {' '.join(str(exc).split())}") from None
-    return True
-
-
 # ----------------------------------------------------------------------------- ROS 1 recovery
-_OP_MSG, _OP_CHUNK, _OP_CONN = 0x02, 0x05, 0x07
-
-
-def _fields(header: bytes) -> dict[str, bytes]:
-    out: dict[str, bytes] = {}
-    i = 0
-    while i + 4 <= len(header):
-        (n,) = struct.unpack_from("<I", header, i)
-        key, _, value = header[i + 4 : i + 4 + n].partition(b"=")
-        out[key.decode("ascii", "replace")] = value
-        i += 4 + n
-    return out
-
-
-def _records(buf: bytes | memoryview, start: int = 0) -> Iterator[tuple[dict[str, bytes], memoryview, int]]:
-    """ROS 1 records (header fields, data, end offset) in ``buf``; stops at an incomplete record."""
-    mv = memoryview(buf)
-    i, size = start, len(mv)
-    while i + 4 <= size:
-        (hl,) = struct.unpack_from("<I", mv, i)
-        if i + 8 + hl > size:
-            return
-        header = bytes(mv[i + 4 : i + 4 + hl])
-        (dl,) = struct.unpack_from("<I", mv, i + 4 + hl)
-        end = i + 8 + hl + dl
-        if end > size:
-            return
-        yield _fields(header), mv[i + 8 + hl : end], end
-        i = end
-
-
 class Ros1ScanBackend(Backend):
     """A ROS 1 bag whose index was never written: its chunks are scanned in file order."""
 
-    def __init__(self, path: Path) -> None:
+    def __init__(self, path: Path, options: ReadOptions | None = None) -> None:
         super().__init__(path=path, format="ros1", ros1=True, recovered=True)
+        self._options = options or ReadOptions.from_env()
         with path.open("rb") as f:
             try:
                 self._data: bytes | mmap.mmap = mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ)
@@ -272,23 +226,23 @@ class Ros1ScanBackend(Backend):
         start = data.find(b"\n") + 1
         conns: dict[int, tuple[str, str]] = {}
         end = start
-        for hdr, body, end in _records(data, start):  # noqa: B007 - the last record's end is checked below
+        pos = start
+        for hdr, body, end in records(data, start):  # noqa: B007 - the last record's end is checked below
             op = hdr.get("op", b"\x00")[0]
-            if op != _OP_CHUNK:
-                if op == _OP_CONN:
+            at, pos = pos, end
+            if op != OP_CHUNK:
+                if op == OP_CONN:
                     self._connection(hdr, body, conns)
                 continue
-            comp = hdr.get("compression", b"none").decode()
-            try:
-                inner = _decompress(comp, bytes(body))
-            except Exception:  # noqa: BLE001 - a damaged chunk ends the readable prefix
-                self.truncated = True
-                return
-            for ihdr, ibody, _ in _records(inner):
-                iop = ihdr.get("op", b"\x00")[0]
-                if iop == _OP_CONN:
+            inner = b"".join(inflate_chunk(self.path, at, hdr, body, self._options))
+            ipos = 0
+            for ihdr, ibody, iend in records(inner):
+                if len(ihdr.get("op", b"")) != 1:  # e.g. zeros: stop at once, not after millions of empty records
+                    raise InputError(self.path, f"corrupt ROS 1 bag: chunk at byte {at}: a record without op at offset {ipos}")
+                iop, ipos = ihdr["op"][0], iend
+                if iop == OP_CONN:
                     self._connection(ihdr, ibody, conns)
-                elif iop == _OP_MSG:
+                elif iop == OP_MSG:
                     (cid,) = struct.unpack("<I", ihdr["conn"])
                     sec, nsec = struct.unpack("<II", ihdr["time"])
                     topic, msgtype = conns[cid]
@@ -304,7 +258,7 @@ class Ros1ScanBackend(Backend):
 
     def _connection(self, hdr: dict[str, bytes], body: memoryview, conns: dict[int, tuple[str, str]]) -> None:
         (cid,) = struct.unpack("<I", hdr["conn"])
-        info = _fields(bytes(body))
+        info = fields(bytes(body))
         topic = hdr.get("topic", info.get("topic", b"")).decode()
         msgtype = normalize_msgtype(info.get("type", b"").decode())
         conns[cid] = (topic, msgtype)
@@ -312,15 +266,3 @@ class Ros1ScanBackend(Backend):
 
     def messages(self, topics: set[str] | None = None) -> Iterator[RawMessage]:
         yield from self._scan(topics)
-
-
-def _decompress(kind: str, data: bytes) -> bytes:
-    if kind == "none":
-        return data
-    if kind == "bz2":
-        return bz2.decompress(data)
-    if kind == "lz4":
-        from lz4.frame import decompress
-
-        return decompress(data)
-    raise ValueError(f"unknown chunk compression {kind!r}")

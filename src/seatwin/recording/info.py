@@ -7,6 +7,7 @@ import os
 from pathlib import Path
 from typing import Any
 
+from seatwin.recording.chunks import ReadOptions
 from seatwin.recording.reader import Recording
 
 
@@ -16,13 +17,15 @@ def _iso(ns: int | None) -> str | None:
     return dt.datetime.fromtimestamp(ns / 1e9, dt.UTC).isoformat(timespec="milliseconds")
 
 
-def bag_info(path: str | os.PathLike[str], scan: bool = True) -> dict[str, Any]:
+def bag_info(path: str | os.PathLike[str], scan: bool = True, ignore_crc: bool = False) -> dict[str, Any]:
     """Format, time span, completeness and per-topic type/count/rate of a recording.
+
+    ``ignore_crc``: MCAP chunks whose CRC does not match are read, and counted in ``bad_crc``.
 
     With ``scan`` every message's log time is read (not decoded) to give each topic's own span
     and mean rate (count − 1)/span; without, rate = (count − 1) / bag duration.
     """
-    with Recording(path) as rec:
+    with Recording(path, ReadOptions.from_env(ignore_crc=ignore_crc)) as rec:
         spans: dict[str, list[int]] = {}
         counts: dict[str, int] = {}
         if scan:
@@ -53,6 +56,7 @@ def bag_info(path: str | os.PathLike[str], scan: bool = True) -> dict[str, Any]:
             "complete": rec.complete,
             "recovered": rec.recovered,
             "truncated": rec.truncated,
+            "bad_crc": rec.bad_crc,
             "seatwin_version": m.get("seatwin_version"),
             "seed": m.get("seed"),
             "error": m.get("error"),

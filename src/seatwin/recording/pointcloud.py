@@ -17,6 +17,8 @@ from seatwin.errors import InputError
 # sensor_msgs/PointField datatype enumeration → numpy type code (little endian added later).
 POINTFIELD_TYPES: dict[int, str] = {1: "i1", 2: "u1", 3: "i2", 4: "u2", 5: "i4", 6: "u4", 7: "f4", 8: "f8"}
 INT8, UINT8, INT16, UINT16, INT32, UINT32, FLOAT32, FLOAT64 = range(1, 9)
+MAX_POINT_STEP = 2**31 - 1
+"""Largest ``point_step`` read: numpy's item size is a C int."""
 
 
 @dataclass(frozen=True)
@@ -173,8 +175,12 @@ def unpack(
     n = width * height
     if n and point_step == 0:
         raise InputError("PointCloud2", f"point_step is 0 for {height}×{width} points")
-    dtype = dtype_from_fields(fields, point_step, big_endian)
+    if point_step > MAX_POINT_STEP:
+        raise InputError("PointCloud2", f"point_step {point_step} exceeds {MAX_POINT_STEP} (the largest point numpy can hold)")
     buf = np.frombuffer(data, dtype=np.uint8) if not isinstance(data, np.ndarray) else data.view(np.uint8).reshape(-1)
+    if n and point_step > buf.size:
+        raise InputError("PointCloud2", f"point_step {point_step} exceeds the data's {buf.size} bytes")
+    dtype = dtype_from_fields(fields, point_step, big_endian)
     packed = width * point_step
     row = row_step if row_step else packed
     if row < packed:

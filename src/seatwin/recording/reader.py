@@ -25,12 +25,15 @@ from numpy.typing import NDArray
 
 from seatwin.errors import InputError
 from seatwin.recording import backends as B
+from seatwin.recording.chunks import ReadOptions
 from seatwin.recording.config import TopicConfig, ros_name
 from seatwin.recording.images import decode_compressed, image_to_array
 from seatwin.recording.manifest import read_manifest
 from seatwin.recording.mcap_check import check_mcap
 from seatwin.recording.messages import StaticTransform
 from seatwin.recording.pointcloud import unpack
+from seatwin.recording.ros1_check import check_ros1
+from seatwin.recording.sqlite_check import ReadableDb, check_sqlite
 
 POINTCLOUD2 = "sensor_msgs/msg/PointCloud2"
 IMAGE = "sensor_msgs/msg/Image"
@@ -160,26 +163,42 @@ def _rosbag2_dir_format(path: Path) -> str:
     return m.group(1) if m else "unknown"
 
 
-def _open_backend(bag: Path, fmt: str) -> B.Backend:
+def _open_backend(bag: Path, fmt: str, options: ReadOptions, keep: list[ReadableDb]) -> tuple[B.Backend, int]:
+    """The backend for ``bag`` and the number of chunks read despite a bad CRC (``options.ignore_crc``).
+    Every storage file is checked first (MCAP structure, chunks and CRCs; ROS 1 chunks; SQLite3
+    cells); a SQLite3 copy made to roll back a hot journal is appended to ``keep`` (closed with the
+    recording)."""
     from rosbags.rosbag1 import ReaderError as Reader1Error
     from rosbags.rosbag2 import ReaderError as Reader2Error
 
     errors = (Reader1Error, Reader2Error, KeyError, ValueError, AssertionError)
     if fmt == "ros1":
+        check_ros1(bag, options)  # before rosbags decompresses a chunk
         try:
-            return B.RosbagsBackend(bag, "ros1")
+            return B.RosbagsBackend(bag, "ros1"), 0
         except errors:
-            return B.Ros1ScanBackend(bag)
+            return B.Ros1ScanBackend(bag, options), 0
     if fmt not in ("mcap", "sqlite3"):
         raise InputError(bag, f"unsupported rosbag2 storage {fmt!r}; expected mcap or sqlite3")
     storage = [bag] if bag.is_file() else sorted(bag.glob("*.mcap" if fmt == "mcap" else "*.db3"))
-    journaled = fmt == "sqlite3" and any(B.rollback_sqlite_journal(db) for db in storage)
+    bad_crc = 0
+    journaled = False
     if fmt == "mcap":
         for f in storage:
-            check_mcap(f)  # before any MCAP reader trusts a length field (issue #14)
+            bad_crc += check_mcap(f, options).bad_crc  # before any MCAP reader trusts a length field (issue #14)
+    else:
+        for f in storage:
+            db = ReadableDb(f)  # never written: a hot journal is rolled back in a copy
+            keep.append(db)
+            journaled = journaled or db.copied
+            check_sqlite(db.path, source=f)
+    if bad_crc:  # rosbags refuses a chunk whose CRC differs; mcap's stream reader reads it
+        if len(storage) > 1:
+            raise InputError(bag, f"{bad_crc} chunks with a bad CRC in a split rosbag2 cannot be read")
+        return B.McapScanBackend(storage[0], options), bad_crc
     if bag.is_dir() and (bag / "metadata.yaml").exists() and not journaled:
         try:
-            return B.RosbagsBackend(bag, fmt)
+            return B.RosbagsBackend(bag, fmt), 0
         except errors:
             pass
     if not storage:
@@ -187,32 +206,39 @@ def _open_backend(bag: Path, fmt: str) -> B.Backend:
     if len(storage) > 1:
         raise InputError(bag, "a split rosbag2 without metadata.yaml cannot be recovered (several storage files)")
     try:
-        backend = B.RosbagsBackend(storage[0], fmt)
+        backend = B.RosbagsBackend(keep[0].path if keep else storage[0], fmt)
         backend.recovered = bag.is_dir() or journaled
-        return backend
+        return backend, 0
     except errors as exc:
         if fmt == "mcap":
-            return B.McapScanBackend(storage[0])
+            return B.McapScanBackend(storage[0], options), 0
         raise InputError(storage[0], f"unreadable SQLite3 bag: {_what(exc)}") from None
 
 
 class Recording:
-    """A bag opened for reading (see the module docstring). Use as a context manager or call :meth:`close`."""
+    """A bag opened for reading (see the module docstring). Use as a context manager or call :meth:`close`.
 
-    def __init__(self, path: str | os.PathLike[str]) -> None:
+    ``options``: decompression budgets and ``ignore_crc`` (:class:`~seatwin.recording.chunks.ReadOptions`);
+    ``bad_crc``: CRC mismatches read anyway (only with ``ignore_crc``)."""
+
+    def __init__(self, path: str | os.PathLike[str], options: ReadOptions | None = None) -> None:
         self.path = Path(path)
+        self.options = options or ReadOptions.from_env()
         self.bag, self.format, self.run_dir = _find_bag(self.path)
         self.manifest = read_manifest(self.run_dir) if self.run_dir else None
+        self._dbs: list[ReadableDb] = []
         try:
-            self._b = _open_backend(self.bag, self.format)
+            self._b, self.bad_crc = _open_backend(self.bag, self.format, self.options, self._dbs)
         except InputError:
+            self._close_dbs()
             raise
         except Exception as exc:  # noqa: BLE001 - any reader failure becomes one clear line
+            self._close_dbs()
             raise InputError(self.bag, f"cannot read bag: {_what(exc)}") from None
         try:
             self.store = B.build_typestore(self._b.topics, self._b.ros1)
         except Exception as exc:  # noqa: BLE001 - rosbags' type system: a corrupt message definition
-            self._b.close()
+            self.close()
             raise InputError(self.bag, f"corrupt message definition: {_what(exc)}") from None
         self._deser = self.store.deserialize_ros1 if self._b.ros1 else self.store.deserialize_cdr
         cfg = (self.manifest or {}).get("topic_config")
@@ -451,6 +477,12 @@ class Recording:
 
     def close(self) -> None:
         self._b.close()
+        self._close_dbs()
+
+    def _close_dbs(self) -> None:
+        for db in self._dbs:
+            db.close()
+        self._dbs.clear()
 
     def __enter__(self) -> Recording:
         return self
@@ -459,6 +491,7 @@ class Recording:
         self.close()
 
 
-def open_bag(path: str | os.PathLike[str]) -> Recording:
-    """Open any recording for reading (run dir, rosbag2 dir, .mcap, .db3, .bag)."""
-    return Recording(path)
+def open_bag(path: str | os.PathLike[str], options: ReadOptions | None = None) -> Recording:
+    """Open any recording for reading (run dir, rosbag2 dir, .mcap, .db3, .bag); ``options``: the
+    decompression budgets and ``ignore_crc`` (default :meth:`ReadOptions.from_env`)."""
+    return Recording(path, options)

@@ -9,18 +9,26 @@ records give the same bytes as rosbags' (``tests/recording/test_storage.py``); a
 
 Every closed chunk is flushed to the operating system at once; a flush closes the open chunk
 (rosbags also closes one at 1 MiB).
+
+CRCs (rosbags writes 0, "not written"): every chunk carries the CRC-32 of its records, and the
+Data End record the CRC-32 of every byte before it (:class:`_CrcFile` keeps it while writing), so
+a reader can tell a damaged bag (``seatwin.recording.mcap_check``).
 """
 
 from __future__ import annotations
 
 import os
 import struct
+import zlib
 from collections import defaultdict
 from collections.abc import Sequence
 from io import BytesIO
 from itertools import chain
+from pathlib import Path
+from typing import Any
 
 from rosbags.interfaces import Connection
+from rosbags.rosbag2.enums import CompressionMode
 from rosbags.rosbag2.storage_mcap import McapWriter, PendingChunk
 
 from seatwin.recording.storage.rosbag2 import Rosbag2Storage
@@ -32,6 +40,46 @@ _MSG_HEAD = struct.Struct("<BQHIQQ")  # op 0x05, record length, channel, sequenc
 _U16, _U32, _U64 = struct.Struct("<H"), struct.Struct("<I"), struct.Struct("<Q")
 
 
+class _CrcFile:
+    """The MCAP file, keeping the CRC-32 of everything written; it puts that CRC into the Data End
+    record that rosbags' ``close`` writes (``0x0F``, length 4, four zero bytes) once :attr:`closing` is set."""
+
+    def __init__(self, raw: Any, crc: int) -> None:
+        self.raw, self.crc = raw, crc
+        self.closing = False
+        self._state = 0  # 1: Data End opcode seen, 2: its length seen, 3: done
+        self._data_crc = 0
+
+    def write(self, data: bytes | memoryview) -> int:
+        if self.closing and self._state < 3:
+            data = self._data_end(data)
+        self.crc = zlib.crc32(data, self.crc)
+        return self.raw.write(data)
+
+    def _data_end(self, data: bytes | memoryview) -> bytes | memoryview:
+        if self._state == 0 and bytes(data) == b"\x0f":
+            self._data_crc, self._state = self.crc, 1
+        elif self._state == 1:
+            self._state = 2 if bytes(data) == _U64.pack(4) else 0
+        elif self._state == 2:
+            self._state = 3
+            if bytes(data) == bytes(4):
+                return _U32.pack(self._data_crc)
+        return data
+
+    def tell(self) -> int:
+        return self.raw.tell()
+
+    def flush(self) -> None:
+        self.raw.flush()
+
+    def fileno(self) -> int:
+        return self.raw.fileno()
+
+    def close(self) -> None:
+        self.raw.close()
+
+
 class LeanMcapWriter(McapWriter):
     """rosbags' MCAP storage with direct writes.
 
@@ -41,6 +89,15 @@ class LeanMcapWriter(McapWriter):
     """
 
     DIRECT_BYTES: int | None = 64 * 1024
+
+    def __init__(self, path: Path, compression: CompressionMode) -> None:
+        super().__init__(path, compression)
+        self.bio.flush()
+        self.bio = _CrcFile(self.bio, zlib.crc32(self.path.read_bytes()))  # the magic and Header record so far
+
+    def close(self, version: int, metadata: str) -> None:
+        self.bio.closing = True
+        super().close(version, metadata)
 
     def write(self, connection: Connection, timestamp: int, data: bytes | memoryview) -> None:
         if self.DIRECT_BYTES is not None and len(data) >= self.DIRECT_BYTES and not self.compression:
@@ -115,7 +172,8 @@ class LeanMcapWriter(McapWriter):
         msg_head = _MSG_HEAD.pack(0x05, 22 + len(data), connection.id, 0, timestamp, timestamp)
         size = len(msg_head) + len(data)
         t = _U64.pack(timestamp)
-        head = t + t + _U64.pack(size) + _U32.pack(0) + _U32.pack(0) + _U64.pack(size)
+        crc = zlib.crc32(data, zlib.crc32(msg_head))
+        head = t + t + _U64.pack(size) + _U32.pack(crc) + _U32.pack(0) + _U64.pack(size)
         chunk_start = out.tell()
         out.write(b"\x06" + _U64.pack(len(head) + size) + head + msg_head)
         out.write(data)
@@ -140,7 +198,7 @@ class LeanMcapWriter(McapWriter):
             _U64.pack(chunk.message_start_time)
             + _U64.pack(chunk.message_end_time)
             + _U64.pack(size)
-            + _U32.pack(0)
+            + _U32.pack(zlib.crc32(buf))
             + _U32.pack(len(comp))
             + comp
             + _U64.pack(n_payload)
