@@ -61,6 +61,12 @@ def register(app: typer.Typer) -> None:
             help="Also score wrong radar models derived from the fitted one: no_bias, wide_noise, low_pd, "
             "heavy_clutter, too_clean (needs --fit-on).",
         ),
+        dont_care: bool = typer.Option(
+            True,
+            "--dont-care/--no-dont-care",
+            help="Leave plots and tracks near the boats without ground truth out of the score's clutter and false-track "
+            "terms (both datasets); --no-dont-care counts them.",
+        ),
         html: bool = typer.Option(True, "--html/--no-html", help="Also write the HTML report (index.html)."),
         workers: int = typer.Option(
             0,
@@ -96,6 +102,7 @@ def register(app: typer.Typer) -> None:
                 "seed0": seed,
                 "calibrate_bias": calibrate_bias,
                 "ablations": ablations,
+                "dont_care": dont_care,
             },
         )
         claim_experiment_folder(

@@ -140,6 +140,9 @@ class ModelResult:
     """Per agent, the first seed's comparison over the whole recording (for the HTML report)."""
     example_plots: list[NDArray[np.float64]] | None = None
     """The first seed's plots per scan."""
+    plot_terms: dict[str, Any] = field(default_factory=dict)
+    """The radar plot-level terms on the evaluation window, all seeds pooled against the real recording
+    (:func:`seatwin.evaluation.plot_terms.radar_plot_terms`, as dicts): per term real, model, signed difference."""
 
     @property
     def synthetic_statistics_mean(self) -> PlotStatistics:
@@ -149,6 +152,7 @@ class ModelResult:
         return {
             "agents": {a: asdict(d) for a, d in self.agents.items()},
             "synthetic_statistics_mean": asdict(self.synthetic_statistics_mean),
+            "plot_terms": self.plot_terms,
             "radar": self.radar,
         }
 
@@ -177,6 +181,8 @@ class FidelityResult:
     primary_agent: str
     real_tracks: dict[str, Tracks]
     data: JoyrideData
+    dont_care: bool = True
+    """Whether the un-truthed vessels were don't-care regions of the score's plot terms."""
 
     @property
     def primary(self) -> AgentResult:
