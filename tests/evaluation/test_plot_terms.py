@@ -104,3 +104,17 @@ def test_radar_plot_terms_hand_computed():
     assert (terms["clutter_per_scan"].real, terms["clutter_per_scan"].synthetic) == pytest.approx((2.0, 1.0))
     assert terms["clutter_per_km2"].difference == pytest.approx(-0.25)
     assert "too sparse" in terms["clutter_per_km2"].sentence()
+
+
+def test_score_block_none_chooses_it_from_the_data():
+    """ScoreOptions(block=None): the score's bootstraps take the block length from the series' autocorrelation —
+    on counts that persist for 10 scans, the interval is wider than an i.i.d. bootstrap's."""
+    from seatwin.evaluation.score import rate_score
+
+    rng = np.random.default_rng(1)
+    real = [np.repeat(rng.poisson(3.0, 30), 10)]
+    synth = [np.repeat(rng.poisson(3.0, 30), 10)]
+    auto = rate_score(real, synth, ScoreOptions(block=None, n_boot=300))
+    iid = rate_score(real, synth, ScoreOptions(block=1, n_boot=300))
+    assert auto.value == iid.value
+    assert auto.ci_high - auto.ci_low > 1.5 * (iid.ci_high - iid.ci_low)
