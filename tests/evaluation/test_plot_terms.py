@@ -118,3 +118,23 @@ def test_score_block_none_chooses_it_from_the_data():
     iid = rate_score(real, synth, ScoreOptions(block=1, n_boot=300))
     assert auto.value == iid.value
     assert auto.ci_high - auto.ci_low > 1.5 * (iid.ci_high - iid.ci_low)
+
+
+def test_lead_of_the_closer_model():
+    from seatwin.evaluation.plot_terms import lead, radar_term_specs
+
+    n = 60
+    rng = np.random.default_rng(2)
+
+    def sample(bias: float) -> RadarPlotSample:
+        return RadarPlotSample(np.full(n, 300.0), rng.normal(0.0, 5.0, n), rng.normal(bias, 0.5, n), np.zeros(n, dtype=np.int64))
+
+    real, near, far = [sample(-1.8)], [sample(-1.6)], [sample(0.0)]
+    spec = radar_term_specs(1.0)["bearing_bias"]
+    mean = [float(np.mean(s[0].bearing_error)) for s in (real, near, far)]
+    got = lead(spec, real, near, far, ScoreOptions(n_boot=300))
+    assert got.value == pytest.approx(abs(mean[2] - mean[0]) - abs(mean[1] - mean[0]))
+    assert got.value > 1.0 and got.resolved and got.ci[0] <= got.value <= got.ci[1]
+    back = lead(spec, real, far, near, ScoreOptions(n_boot=300))
+    assert back.value == pytest.approx(-got.value) and not back.resolved
+    assert lead(spec, real, near, [sample(-1.8)], ScoreOptions(n_boot=300)).resolved is False  # B (the true bias) is the closer one: no lead

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field
+from functools import partial
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -201,8 +202,42 @@ def _std(x: NDArray[np.float64]) -> float:
     return float(np.std(x, ddof=1))
 
 
-def _in_bin(sample: RadarPlotSample, lo: float, hi: float) -> NDArray[np.float64]:
+def _in_bin(sample: RadarPlotSample, *, lo: float, hi: float) -> NDArray[np.float64]:
     return np.where((sample.target_range >= lo) & (sample.target_range < hi), sample.detected, np.nan)
+
+
+@dataclass(frozen=True)
+class TermSpec:
+    """How one radar plot-level term is computed from a :class:`RadarPlotSample`."""
+
+    label: str
+    unit: str
+    series: Callable[[RadarPlotSample], NDArray[np.float64]]
+    """Per scan, the value the statistic pools (NaN: the scan has none)."""
+    statistic: Callable[[NDArray[np.float64]], float]
+    directions: tuple[str, str] = ("high", "low")
+    scale: float = 1.0
+
+
+def radar_term_specs(area_km2: float, range_edges: Sequence[float] = PD_RANGE_EDGES_M) -> dict[str, TermSpec]:
+    """The radar plot-level terms: bearing and range bias (mean error), bearing and range σ (standard deviation of
+    the error), detection probability per range bin of ``range_edges``, clutter plots per scan and per km²
+    (``area_km2``: the area the radar covers, the same for both sides)."""
+
+    def clutter(s: RadarPlotSample) -> NDArray[np.float64]:
+        return s.clutter.astype(float)
+
+    specs = {
+        "bearing_bias": TermSpec("bearing bias", "°", lambda s: s.bearing_error, _mean, ("far clockwise", "far anticlockwise")),
+        "range_bias": TermSpec("range bias", "m", lambda s: s.range_error, _mean, ("far", "near")),
+        "bearing_sigma": TermSpec("bearing σ", "°", lambda s: s.bearing_error, _std, ("wide", "narrow")),
+        "range_sigma": TermSpec("range σ", "m", lambda s: s.range_error, _std, ("wide", "narrow")),
+    }
+    for lo, hi in zip(range_edges[:-1], range_edges[1:]):
+        specs[f"pd_{lo:.0f}_{hi:.0f}m"] = TermSpec(f"Pd {lo:.0f}–{hi:.0f} m", "", partial(_in_bin, lo=lo, hi=hi), _mean)
+    specs["clutter_per_scan"] = TermSpec("clutter per scan", "plots", clutter, _mean, ("dense", "sparse"))
+    specs["clutter_per_km2"] = TermSpec("clutter density", "plots/km²/scan", clutter, _mean, ("dense", "sparse"), 1.0 / area_km2)
+    return specs
 
 
 def radar_plot_terms(
@@ -212,37 +247,65 @@ def radar_plot_terms(
     options: ScoreOptions | None = None,
     range_edges: Sequence[float] = PD_RANGE_EDGES_M,
 ) -> dict[str, SignedTerm]:
-    """Every radar plot-level term of real runs against synthetic runs: bearing and range bias (mean error),
-    bearing and range σ (standard deviation of the error), detection probability per range bin of
-    ``range_edges``, and clutter plots per scan and per km² (``area_km2``: the area the radar covers)."""
-    o = options or ScoreOptions()
-    out = {
-        "bearing_bias": signed_term(
-            "bearing bias",
-            "°",
-            [s.bearing_error for s in real],
-            [s.bearing_error for s in synthetic],
-            _mean,
-            o,
-            ("far clockwise", "far anticlockwise"),
-        ),
-        "range_bias": signed_term(
-            "range bias", "m", [s.range_error for s in real], [s.range_error for s in synthetic], _mean, o, ("far", "near")
-        ),
-        "bearing_sigma": signed_term(
-            "bearing σ", "°", [s.bearing_error for s in real], [s.bearing_error for s in synthetic], _std, o, ("wide", "narrow")
-        ),
-        "range_sigma": signed_term(
-            "range σ", "m", [s.range_error for s in real], [s.range_error for s in synthetic], _std, o, ("wide", "narrow")
-        ),
-    }
-    for lo, hi in zip(range_edges[:-1], range_edges[1:]):
-        out[f"pd_{lo:.0f}_{hi:.0f}m"] = signed_term(
-            f"Pd {lo:.0f}–{hi:.0f} m", "", [_in_bin(s, lo, hi) for s in real], [_in_bin(s, lo, hi) for s in synthetic], _mean, o
+    """Every radar plot-level term (:func:`radar_term_specs`) of real runs against synthetic runs (:func:`signed_term`)."""
+    return {
+        k: signed_term(
+            t.label,
+            t.unit,
+            [t.series(s) for s in real],
+            [t.series(s) for s in synthetic],
+            t.statistic,
+            options,
+            t.directions,
+            t.scale,
         )
-    clutter_r, clutter_s = [s.clutter.astype(float) for s in real], [s.clutter.astype(float) for s in synthetic]
-    out["clutter_per_scan"] = signed_term("clutter per scan", "plots", clutter_r, clutter_s, _mean, o, ("dense", "sparse"))
-    out["clutter_per_km2"] = signed_term(
-        "clutter density", "plots/km²/scan", clutter_r, clutter_s, _mean, o, ("dense", "sparse"), scale=1.0 / area_km2
-    )
-    return out
+        for k, t in radar_term_specs(area_km2, range_edges).items()
+    }
+
+
+@dataclass
+class Lead:
+    """How much closer model A's statistic is to the real one than model B's: ``|B − real| − |A − real|``
+    (positive: A is closer), with a bootstrap interval that resamples the real runs once for both models."""
+
+    name: str
+    unit: str
+    value: float | None
+    ci: tuple[float, float] | None = None
+    reason: str | None = None
+
+    @property
+    def resolved(self) -> bool:
+        """A is closer to the real value than B, at the interval's level (the interval is above 0)."""
+        return self.ci is not None and self.ci[0] > 0.0
+
+    def to_dict(self) -> dict:
+        return asdict(self) | {"resolved": self.resolved}
+
+
+def lead(
+    spec: TermSpec,
+    real: Sequence[RadarPlotSample],
+    model_a: Sequence[RadarPlotSample],
+    model_b: Sequence[RadarPlotSample],
+    options: ScoreOptions | None = None,
+) -> Lead:
+    """The :class:`Lead` of model A over model B in the term ``spec``."""
+    o = options or ScoreOptions()
+    sides = [[np.asarray(spec.series(s), float) for s in side] for side in (real, model_a, model_b)]
+    pooled = [_pooled(side) for side in sides]
+    if min(map(len, pooled)) < o.n_min:
+        return Lead(spec.label, spec.unit, None, reason=f"fewer than {o.n_min} values ({', '.join(str(len(p)) for p in pooled)})")
+    block = runs_block_length([r for side in sides for r in side])
+    rng = frame_rng(o.seed, f"plot_terms/lead/{spec.label}", 0)
+
+    def gap(vals: list[float]) -> float:
+        return abs(vals[2] - vals[0]) - abs(vals[1] - vals[0])
+
+    reps = np.full(o.n_boot, np.nan)
+    for b in range(o.n_boot):
+        boot = [_pooled(side, [circular_block_indices(len(r), block, rng) for r in side]) for side in sides]
+        if min(map(len, boot)) >= 2:
+            reps[b] = gap([spec.statistic(x) * spec.scale for x in boot])
+    value = gap([spec.statistic(x) * spec.scale for x in pooled])
+    return Lead(spec.label, spec.unit, value, percentile_interval(reps, o.level))

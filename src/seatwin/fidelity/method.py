@@ -305,6 +305,7 @@ def evaluate_model(
         from seatwin.evaluation.plot_terms import radar_plot_terms
 
         synth_samples = [window_plot_sample(data, plots, config, window, dont_care) for _, plots, _ in seeds]
+        result.plot_samples = synth_samples
         terms = radar_plot_terms([real_sample], synth_samples, coverage_km2, score_options(opts))
         result.plot_terms = {k: v.to_dict() for k, v in terms.items()}
     for agent in opts.agents:
@@ -421,6 +422,11 @@ def run_fidelity(
     dont_care = vessels_truth(extra, data.source) if opts.dont_care else None
     real_sample = window_plot_sample(data, data.plots, base, window, dont_care)
     coverage_km2 = float(np.pi * (base.max_range_m**2 - base.min_range_m**2) / 1e6)
+    results = {
+        label: evaluate_model(data, cfg, opts, window, real_tracks, seeds[label], label, dont_care, real_sample, coverage_km2)
+        for label, cfg in models.items()
+    }
+    primary = "fitted" if "fitted" in models else "default"
     return FidelityResult(
         dataset=str(path),
         n_scans=n,
@@ -446,13 +452,27 @@ def run_fidelity(
             else "off (--no-dont-care): plots and confirmed tracks of un-truthed vessels count as clutter and false tracks",
         },
         radar_fit=fit_report,
-        models={
-            label: evaluate_model(data, cfg, opts, window, real_tracks, seeds[label], label, dont_care, real_sample, coverage_km2)
-            for label, cfg in models.items()
-        },
-        primary_model="fitted" if "fitted" in models else "default",
+        models=results,
+        primary_model=primary,
         primary_agent=opts.agents[0],
         real_tracks=real_tracks,
         data=data,
         dont_care=opts.dont_care,
+        plot_term_leads=plot_term_leads(real_sample, results, primary, coverage_km2, score_options(opts)),
     )
+
+
+def plot_term_leads(
+    real: RadarPlotSample, models: dict[str, ModelResult], primary: str, coverage_km2: float, options: ScoreOptions
+) -> dict[str, dict[str, dict]]:
+    """Per other model, per radar plot-level term, how much closer the ``primary`` model is to the real recording
+    (:func:`seatwin.evaluation.plot_terms.lead`, as dicts): positive and resolved = the primary model is closer."""
+    from seatwin.evaluation.plot_terms import lead, radar_term_specs
+
+    specs = radar_term_specs(coverage_km2)
+    a = models[primary].plot_samples
+    return {
+        label: {k: lead(spec, [real], a, m.plot_samples, options).to_dict() for k, spec in specs.items()}
+        for label, m in models.items()
+        if label != primary
+    }

@@ -183,6 +183,24 @@ def plot_terms_markdown(result: FidelityResult) -> list[str]:
             )
     lines += ["", f"`{result.primary_model}`:", ""]
     lines += [f"* {t['sentence']}" for t in result.models[result.primary_model].plot_terms.values()]
+    if result.plot_term_leads:
+        lines += [
+            "",
+            f"Lead of `{result.primary_model}` over each other model per term: |other − real| − |{result.primary_model} − real| "
+            "with its 95 % interval (real resampled once for both); **bold** = resolved (interval above 0), "
+            "negative = the other model is closer.",
+            "",
+            "| model | " + " | ".join(next(iter(result.plot_term_leads.values()))) + " |",
+            "|---|" + "---|" * len(next(iter(result.plot_term_leads.values()))),
+        ]
+        for label, leads in result.plot_term_leads.items():
+            cells = [
+                "–"
+                if d["value"] is None
+                else (f"**{d['value']:.3g}**" if d["resolved"] else f"{d['value']:.3g}") + f" {_ci(d['ci'])}"
+                for d in leads.values()
+            ]
+            lines.append(f"| {label} | " + " | ".join(cells) + " |")
     return [*lines, ""]
 
 
