@@ -96,7 +96,7 @@ def test_radar_plot_terms_hand_computed():
     assert terms["bearing_bias"].difference == pytest.approx(2.0) and terms["bearing_bias"].resolved
     assert terms["range_bias"].real == pytest.approx(4.0) and terms["range_bias"].synthetic == pytest.approx(4.0)
     assert terms["range_sigma"].real == pytest.approx(0.0) and terms["range_sigma"].synthetic == pytest.approx(
-        np.std(synth.range_error, ddof=1)
+        1.4826 * 2.0  # robust σ: errors 2 and 6, median 4, every deviation 2
     )
     assert (terms["pd_0_250m"].real, terms["pd_0_250m"].synthetic) == pytest.approx((0.5, 1.0))
     assert terms["pd_500_1000m"].difference == pytest.approx(0.5)
@@ -137,4 +137,6 @@ def test_lead_of_the_closer_model():
     assert got.value > 1.0 and got.resolved and got.ci[0] <= got.value <= got.ci[1]
     back = lead(spec, real, far, near, ScoreOptions(n_boot=300))
     assert back.value == pytest.approx(-got.value) and not back.resolved
-    assert lead(spec, real, near, [sample(-1.8)], ScoreOptions(n_boot=300)).resolved is False  # B (the true bias) is the closer one: no lead
+    assert (
+        lead(spec, real, near, [sample(-1.8)], ScoreOptions(n_boot=300)).resolved is False
+    )  # B (the true bias) is the closer one: no lead

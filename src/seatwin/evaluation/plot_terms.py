@@ -198,8 +198,14 @@ def _mean(x: NDArray[np.float64]) -> float:
     return float(np.mean(x))
 
 
-def _std(x: NDArray[np.float64]) -> float:
-    return float(np.std(x, ddof=1))
+MAD_TO_SIGMA = 1.4826
+"""σ of a normal distribution per median absolute deviation."""
+
+
+def robust_sigma(x: NDArray[np.float64]) -> float:
+    """σ from the median absolute deviation (× :data:`MAD_TO_SIGMA`): the gate admits the odd clutter plot
+    (errors spread over the whole gate), which would decide a standard deviation and skew its bootstrap."""
+    return float(MAD_TO_SIGMA * np.median(np.abs(x - np.median(x))))
 
 
 def _in_bin(sample: RadarPlotSample, *, lo: float, hi: float) -> NDArray[np.float64]:
@@ -220,7 +226,7 @@ class TermSpec:
 
 
 def radar_term_specs(area_km2: float, range_edges: Sequence[float] = PD_RANGE_EDGES_M) -> dict[str, TermSpec]:
-    """The radar plot-level terms: bearing and range bias (mean error), bearing and range σ (standard deviation of
+    """The radar plot-level terms: bearing and range bias (mean error), bearing and range σ (:func:`robust_sigma` of
     the error), detection probability per range bin of ``range_edges``, clutter plots per scan and per km²
     (``area_km2``: the area the radar covers, the same for both sides)."""
 
@@ -230,8 +236,8 @@ def radar_term_specs(area_km2: float, range_edges: Sequence[float] = PD_RANGE_ED
     specs = {
         "bearing_bias": TermSpec("bearing bias", "°", lambda s: s.bearing_error, _mean, ("far clockwise", "far anticlockwise")),
         "range_bias": TermSpec("range bias", "m", lambda s: s.range_error, _mean, ("far", "near")),
-        "bearing_sigma": TermSpec("bearing σ", "°", lambda s: s.bearing_error, _std, ("wide", "narrow")),
-        "range_sigma": TermSpec("range σ", "m", lambda s: s.range_error, _std, ("wide", "narrow")),
+        "bearing_sigma": TermSpec("bearing σ", "°", lambda s: s.bearing_error, robust_sigma, ("wide", "narrow")),
+        "range_sigma": TermSpec("range σ", "m", lambda s: s.range_error, robust_sigma, ("wide", "narrow")),
     }
     for lo, hi in zip(range_edges[:-1], range_edges[1:]):
         specs[f"pd_{lo:.0f}_{hi:.0f}m"] = TermSpec(f"Pd {lo:.0f}–{hi:.0f} m", "", partial(_in_bin, lo=lo, hi=hi), _mean)
