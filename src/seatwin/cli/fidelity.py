@@ -18,7 +18,9 @@ _JOYRIDE_HELP = (
     "second half (no peeking), with a block-bootstrap 95 % interval and its spread over seeds. Every model is "
     "also given the unpaired fidelity score (error distributions, coverage, clutter, false tracks; 0 = "
     "indistinguishable) and the models are ranked by it; --ablations adds deliberately wrong models derived "
-    "from the fitted one (no_bias, wide_noise, low_pd, heavy_clutter, too_clean), which should rank below it."
+    "from the fitted one (no_bias, wide_noise, low_pd, heavy_clutter, too_clean), which should rank below it. "
+    "Beside the score, radar plot-level terms (plots against the GNSS truth: bearing and range bias and σ, Pd by "
+    "range, clutter) give real, model and the signed difference with intervals: which parameter is off, which way."
 )
 
 
