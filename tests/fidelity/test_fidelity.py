@@ -95,8 +95,12 @@ def test_fidelity_bad_input(tmp_path, capsys):
 
 @pytest.mark.slow
 def test_fidelity_real_joyride_ranks_the_fitted_model_first(shared_data, tmp_path):
-    """Issue 13's acceptance check on the real data: fitted on the first half, scored on the held-out half
-    against the six wrong models, 5 seeds each, the fitted radar model ranks first."""
+    """Issue 13's acceptance check on the real data, as the method guarantees it (issue 22): fitted on the first half,
+    scored on the held-out half against the six wrong models, 5 seeds each, no model's score is below the fitted
+    model's interval (not one fixed-seed order); the plot-level bearing-bias term resolves what the tracker-level
+    score cannot: no_bias is too far clockwise. (The fitted model is closer to the real bias, by 0.82°, but that
+    lead is not resolved on the held-out half — [−0.03, 1.66]°: the real bias moves from −1.98° in the first half
+    to −1.58° in the second, and the fitted model, −2.16°, is itself resolved as 0.58° too far anticlockwise.)"""
     out = tmp_path / "real"
     args = ["fidelity", "joyride", str(shared_data / "joyride" / "joyride.mat"), "--out", str(out), "--seeds", "5"]
     args += ["--agents", "jipda", "--boot", "100", "--fit-on", "first-half", "--fit-boot", "5", "--ablations"]
@@ -105,14 +109,22 @@ def test_fidelity_real_joyride_ranks_the_fitted_model_first(shared_data, tmp_pat
     assert 0.0 < j["ahed"] < 1.0
     assert j["n_common"] > 0
     ranking = j["ranking"]
-    assert [r["model"] for r in ranking][0] == "fitted", ranking
     assert {r["model"] for r in ranking} == {"fitted", "default", "no_bias", "wide_noise", "low_pd", "heavy_clutter", "too_clean"}
-    fitted = ranking[0]
-    assert fitted["ci_low"] <= fitted["score"] <= fitted["ci_high"]
     by_model = {r["model"]: r for r in ranking}
+    fitted = by_model["fitted"]
+    assert fitted["ci_low"] <= fitted["score"] <= fitted["ci_high"]
+    for r in ranking:
+        assert r["score"] >= fitted["ci_low"], (r["model"], ranking)  # the fitted model is never beaten outside its interval
     for clearly_worse in ("default", "heavy_clutter", "too_clean"):
         assert by_model[clearly_worse]["score"] > fitted["ci_high"], (clearly_worse, ranking)
+    real_bias = j["models"]["fitted"]["plot_terms"]["bearing_bias"]["real"]
+    assert -2.5 < real_bias < -1.0  # the real radar's bearing bias, from its plots against GNSS
+    no_bias = j["models"]["no_bias"]["plot_terms"]["bearing_bias"]
+    assert no_bias["resolved"] and no_bias["difference_ci"][0] > 0.0 and "too far clockwise" in no_bias["sentence"]
+    assert j["plot_term_leads"]["no_bias"]["bearing_bias"]["value"] > 0.0  # closer, though not resolved (docstring)
     assert "untruthed1" in j["assumptions"]["untruthed_vessels"]  # the boat without GNSS: in the replica, don't-care in the score
+    md = (out / "fidelity.md").read_text()
+    assert "## Radar plot-level terms" in md and "bearing bias" in md
     page = (out / "index.html").read_text()
     assert len(page) > 10_000
     assert "Models ranked by fidelity score" in page and 'alt="fidelity score by model"' in page
@@ -299,3 +311,21 @@ def test_fidelity_console_and_report_say_what_they_show(toy_mat, tmp_path, capsy
     rows = re.findall(r"<tr>(.*?)</tr>", page, re.S)
     ahed_rows = [re.sub(r"<[^>]+>", "|", r) for r in rows if "radar model (seed" in r]
     assert ahed_rows and all("agent JIPDA" in r or "agent GNN" in r for r in ahed_rows), ahed_rows[:2]
+
+
+def test_no_dont_care_and_plot_terms_on_the_toy_dataset(toy_mat, tmp_path):
+    """--no-dont-care switches the rule off (and says so); every model gets the radar plot-level terms, with the
+    real and the model's value and the signed difference."""
+    out = tmp_path / "off"
+    args = ["fidelity", "joyride", str(toy_mat), "--out", str(out), "--fit-on", "all", "--seeds", "2", "--agents", "gnn"]
+    assert run([*args, "--boot", "20", "--fit-boot", "0", "--no-html", "--no-dont-care"]) == 0
+    j = json.loads((out / "fidelity.json").read_text())
+    assert j["assumptions"]["score_dont_care"].startswith("off: ")
+    terms = j["models"]["fitted"]["plot_terms"]
+    assert {"bearing_bias", "range_bias", "bearing_sigma", "range_sigma", "clutter_per_scan", "clutter_per_km2"} <= set(terms)
+    bias = terms["bearing_bias"]
+    assert bias["difference"] == pytest.approx(bias["synthetic"] - bias["real"])
+    assert bias["difference_ci"][0] <= bias["difference"] <= bias["difference_ci"][1]
+    assert -1.0 < bias["real"] < 0.0  # the toy radar's bearing bias is −0.5°
+    assert set(j["plot_term_leads"]) == {"default"}
+    assert "## Radar plot-level terms" in (out / "fidelity.md").read_text()

@@ -18,7 +18,9 @@ _JOYRIDE_HELP = (
     "second half (no peeking), with a block-bootstrap 95 % interval and its spread over seeds. Every model is "
     "also given the unpaired fidelity score (error distributions, coverage, clutter, false tracks; 0 = "
     "indistinguishable) and the models are ranked by it; --ablations adds deliberately wrong models derived "
-    "from the fitted one (no_bias, wide_noise, low_pd, heavy_clutter, too_clean), which should rank below it."
+    "from the fitted one (no_bias, wide_noise, low_pd, heavy_clutter, too_clean), which should rank below it. "
+    "Beside the score, radar plot-level terms (plots against the GNSS truth: bearing and range bias and σ, Pd by "
+    "range, clutter) give real, model and the signed difference with intervals: which parameter is off, which way."
 )
 
 
@@ -61,6 +63,12 @@ def register(app: typer.Typer) -> None:
             help="Also score wrong radar models derived from the fitted one: no_bias, wide_noise, low_pd, "
             "heavy_clutter, too_clean (needs --fit-on).",
         ),
+        dont_care: bool = typer.Option(
+            True,
+            "--dont-care/--no-dont-care",
+            help="Leave plots and tracks near the boats without ground truth out of the score's clutter and false-track "
+            "terms (both datasets); --no-dont-care counts them.",
+        ),
         html: bool = typer.Option(True, "--html/--no-html", help="Also write the HTML report (index.html)."),
         workers: int = typer.Option(
             0,
@@ -96,6 +104,7 @@ def register(app: typer.Typer) -> None:
                 "seed0": seed,
                 "calibrate_bias": calibrate_bias,
                 "ablations": ablations,
+                "dont_care": dont_care,
             },
         )
         claim_experiment_folder(

@@ -42,7 +42,7 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from seatwin.evaluation.bootstrap import circular_block_indices, percentile_interval
+from seatwin.evaluation.bootstrap import circular_block_indices, percentile_interval, runs_block_length
 from seatwin.evaluation.evaluate import Evaluation, TargetSeries
 from seatwin.evaluation.hellinger import hellinger
 from seatwin.evaluation.tracks_io import Tracks
@@ -60,8 +60,9 @@ class ScoreOptions:
     n_min: int = 10
     """Fewest instants with a track, per dataset, behind an error distribution (else refused)."""
     n_boot: int = 200
-    block: int = 10
-    """Bootstrap block length [instants or scans]."""
+    block: int | None = 10
+    """Bootstrap block length [instants or scans]; None: chosen per term from its series' autocorrelation
+    (:func:`seatwin.evaluation.bootstrap.runs_block_length`)."""
     level: float = 0.95
     seed: int = 0
     clutter_gate: float = 25.0
@@ -166,6 +167,11 @@ def _replicates(o: ScoreOptions, stream: str, replicate: Callable[[np.random.Gen
     return np.array([replicate(rng) for _ in range(o.n_boot)], dtype=float)
 
 
+def _block(o: ScoreOptions, series: Sequence[ArrayLike]) -> int:
+    """The bootstrap block length of a term: ``o.block``, or chosen from the term's ``series`` (one per run) when None."""
+    return o.block if o.block is not None else runs_block_length(series)
+
+
 def _pool(runs: Sequence[TargetErrors], idx: Sequence[NDArray[np.int64]] | None = None) -> tuple[NDArray[np.float64], int]:
     """Errors at the instants with a track, pooled over runs (resampled at ``idx`` per run), and the instant count."""
     parts = [r.error if idx is None else r.error[i] for r, i in zip(runs, idx or [None] * len(runs))]
@@ -202,12 +208,14 @@ def target_score(
     if min(len(er), len(es)) < o.n_min:
         return ScoreValue(1.0, 1.0, 1.0, None, counts | {"one_sided": True}, np.ones(o.n_boot))
     value = _target_value((er, nr), (es, ns))
+    # Block length from the errors' components and the track indicator, each run a series (NaN: no track).
+    block = _block(o, [x for r in [*real, *synthetic] for x in (r.error[:, 0], r.error[:, 1], np.isfinite(r.error[:, 0]))])
     reps = _replicates(
         o,
         f"score/target/{stream}",
         lambda rng: _target_value(
-            _pool(real, [circular_block_indices(len(r.error), o.block, rng) for r in real]),
-            _pool(synthetic, [circular_block_indices(len(s.error), o.block, rng) for s in synthetic]),
+            _pool(real, [circular_block_indices(len(r.error), block, rng) for r in real]),
+            _pool(synthetic, [circular_block_indices(len(s.error), block, rng) for s in synthetic]),
         ),
     )
     counts |= {"coverage_real": len(er) / nr, "coverage_synthetic": len(es) / ns}
@@ -234,12 +242,13 @@ def rate_score(
         return tot / sum(map(len, parts))
 
     lam_r, lam_s = rate(rr), rate(ss)
+    block = _block(o, rr + ss)
     reps = _replicates(
         o,
         f"score/rate/{stream}",
         lambda rng: poisson_hellinger(
-            rate(rr, [circular_block_indices(len(p), o.block, rng) for p in rr]),
-            rate(ss, [circular_block_indices(len(p), o.block, rng) for p in ss]),
+            rate(rr, [circular_block_indices(len(p), block, rng) for p in rr]),
+            rate(ss, [circular_block_indices(len(p), block, rng) for p in ss]),
         ),
     )
     counts = {"rate_real_per_scan": lam_r, "rate_synthetic_per_scan": lam_s, "n_scans_real": n_r, "n_scans_synthetic": n_s}
@@ -267,9 +276,12 @@ def shape_score(
     if min(len(fr), len(fs)) < o.n_min:
         return _refused(f"fewer than {o.n_min} plots with a shape ({len(fr)} real, {len(fs)} synthetic)", **counts)
 
+    # Block length from each run's per-scan mean features (NaN for a scan without clusters).
+    block = _block(o, [[f[:, j].mean() if len(f) else np.nan for f in run] for run in rr + ss for j in range(2)])
+
     def replicate(rng: np.random.Generator) -> float:
-        br = pool(rr, [circular_block_indices(len(run), o.block, rng) for run in rr])
-        bs = pool(ss, [circular_block_indices(len(run), o.block, rng) for run in ss])
+        br = pool(rr, [circular_block_indices(len(run), block, rng) for run in rr])
+        bs = pool(ss, [circular_block_indices(len(run), block, rng) for run in ss])
         return error_hellinger(br, bs, 0.0) if min(len(br), len(bs)) >= 2 else np.nan
 
     reps = _replicates(o, "score/shape", replicate)

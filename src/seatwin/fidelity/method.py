@@ -47,6 +47,7 @@ from seatwin.settings import validated
 if TYPE_CHECKING:
     from seatwin.evaluation import Evaluation, Tracks, TruthSet
     from seatwin.evaluation.compare import CompareOptions, ComparisonSeries
+    from seatwin.evaluation.plot_terms import RadarPlotSample
     from seatwin.evaluation.score import FidelityScore, ScoreOptions
     from seatwin.sensors.radar.config import RadarConfig
     from seatwin.tracking import TrackerConfig
@@ -159,6 +160,25 @@ def floor_stats(
     ]
 
 
+def window_plot_sample(
+    data: JoyrideData,
+    plots: list[NDArray[np.float64]],
+    config: RadarConfig,
+    window: tuple[float, float],
+    dont_care: TruthSet | None = None,
+) -> RadarPlotSample:
+    """The radar plot-level sample (:func:`seatwin.evaluation.plot_terms.radar_plot_sample`) of a recording's
+    ``plots`` inside ``window``: errors from ``config``'s antenna, clutter beyond the method's gate from the target
+    and the ``dont_care`` vessels."""
+    from seatwin.evaluation.plot_terms import radar_plot_sample
+
+    idx = np.flatnonzero(in_window(data.time, window))
+    antenna = antenna_positions(data, config)[idx]
+    return radar_plot_sample(
+        data.time[idx], antenna, [plots[k] for k in idx], truth_of(data), TARGET, RADAR_CLUTTER_GATE_M, dont_care
+    )
+
+
 def window_evaluation(tracks: Tracks, truth: TruthSet, window: tuple[float, float], options: CompareOptions) -> Evaluation:
     """:func:`seatwin.evaluation.evaluate` of the track rows inside ``window`` (so that false tracks, too,
     are counted there only), with the comparison's conventions."""
@@ -251,10 +271,15 @@ def evaluate_model(
     seeds: list[tuple[int, list[NDArray[np.float64]], dict[str, Tracks]]],
     label: str = "",
     dont_care: TruthSet | None = None,
+    real_sample: RadarPlotSample | None = None,
+    coverage_km2: float = 1.0,
 ) -> ModelResult:
     """AHED and the score per agent in ``window`` of radar ``config``'s synthetic recordings: ``seeds`` holds,
     per seed in order, its plots per scan and its tracks per agent (:mod:`seatwin.fidelity.jobs`); plots and
-    tracks near a vessel of ``dont_care`` are left out of the score's plot terms."""
+    tracks near a vessel of ``dont_care`` are left out of the score's plot terms. With ``real_sample`` (the real
+    recording's :func:`window_plot_sample`) the radar plot-level terms too
+    (:func:`seatwin.evaluation.plot_terms.radar_plot_terms`; clutter per km² over ``coverage_km2``, one area for
+    every model and the real radar)."""
     from seatwin.evaluation import CompareOptions, compare
 
     truth = truth_of(data)
@@ -276,6 +301,13 @@ def evaluate_model(
                 result.comparisons[agent] = comp
             off_target[agent].append(off_target_tracks(tr, data, window))
             runs[agent].append(window_stats(comp.series[TARGET], window, seed))
+    if real_sample is not None:
+        from seatwin.evaluation.plot_terms import radar_plot_terms
+
+        synth_samples = [window_plot_sample(data, plots, config, window, dont_care) for _, plots, _ in seeds]
+        result.plot_samples = synth_samples
+        terms = radar_plot_terms([real_sample], synth_samples, coverage_km2, score_options(opts))
+        result.plot_terms = {k: v.to_dict() for k, v in terms.items()}
     for agent in opts.agents:
         floor = floor_stats(synth_tracks[agent], opts.seed0, truth, window, opts.tuning)
         score = window_score(real_tracks[agent], synth_tracks[agent], truth, window, score_options(opts), dont_care)
@@ -387,7 +419,14 @@ def run_fidelity(
     extra = untruthed_vessels(real_tracks[opts.agents[0]], data, RADAR_CLUTTER_GATE_M) if opts.untruthed_vessels else {}
     idx_w = np.flatnonzero(in_window(data.time, window))
     seeds = _run_seeds(path, models, opts, tuning, extra, jobs_in, workers, address, progress)
-    dont_care = vessels_truth(extra, data.source)
+    dont_care = vessels_truth(extra, data.source) if opts.dont_care else None
+    real_sample = window_plot_sample(data, data.plots, base, window, dont_care)
+    coverage_km2 = float(np.pi * (base.max_range_m**2 - base.min_range_m**2) / 1e6)
+    results = {
+        label: evaluate_model(data, cfg, opts, window, real_tracks, seeds[label], label, dont_care, real_sample, coverage_km2)
+        for label, cfg in models.items()
+    }
+    primary = "fitted" if "fitted" in models else "default"
     return FidelityResult(
         dataset=str(path),
         n_scans=n,
@@ -408,15 +447,32 @@ def run_fidelity(
                 name: {"from": float(rows[0, 0]), "to": float(rows[-1, 0]), "scans": len(rows)} for name, rows in extra.items()
             },
             "score_dont_care": f"plots and confirmed tracks within {RADAR_CLUTTER_GATE_M:g} m of an un-truthed vessel are "
-            "neither clutter nor false tracks in the fidelity score (both datasets)",
+            "neither clutter nor false tracks in the fidelity score (both datasets)"
+            if opts.dont_care
+            else "off: plots and confirmed tracks of un-truthed vessels count as clutter and false tracks",
         },
         radar_fit=fit_report,
-        models={
-            label: evaluate_model(data, cfg, opts, window, real_tracks, seeds[label], label, dont_care)
-            for label, cfg in models.items()
-        },
-        primary_model="fitted" if "fitted" in models else "default",
+        models=results,
+        primary_model=primary,
         primary_agent=opts.agents[0],
         real_tracks=real_tracks,
         data=data,
+        dont_care=opts.dont_care,
+        plot_term_leads=plot_term_leads(real_sample, results, primary, coverage_km2, score_options(opts)),
     )
+
+
+def plot_term_leads(
+    real: RadarPlotSample, models: dict[str, ModelResult], primary: str, coverage_km2: float, options: ScoreOptions
+) -> dict[str, dict[str, dict]]:
+    """Per other model, per radar plot-level term, how much closer the ``primary`` model is to the real recording
+    (:func:`seatwin.evaluation.plot_terms.lead`, as dicts): positive and resolved = the primary model is closer."""
+    from seatwin.evaluation.plot_terms import lead, radar_term_specs
+
+    specs = radar_term_specs(coverage_km2)
+    a = models[primary].plot_samples
+    return {
+        label: {k: lead(spec, [real], a, m.plot_samples, options).to_dict() for k, spec in specs.items()}
+        for label, m in models.items()
+        if label != primary
+    }

@@ -42,6 +42,12 @@ class FidelityOptions(Settings):
         "target (from the real tracks: seatwin.fidelity.joyride.untruthed_vessels); the radar models are compared "
         "on the same scene as reality, not on a scene missing a boat.",
     )
+    dont_care: bool = Field(
+        True,
+        description="Leave the plots and confirmed tracks near the un-truthed vessels out of the score's clutter and "
+        "false-track terms, in both datasets (docs/fidelity-score.md, Don't-care vessels); off: they count as clutter "
+        "and false tracks. The vessels stay in the replica either way.",
+    )
     ablations: bool = Field(
         False,
         description="Also score deliberately wrong radar models derived from the fitted one (no_bias, wide_noise, "

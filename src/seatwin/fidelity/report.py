@@ -123,6 +123,11 @@ def ranking_note(result: FidelityResult) -> str:
     names = untruthed_names(result)
     if not names:
         return RANKING_NOTE
+    if not result.dont_care:
+        return (
+            f"{RANKING_NOTE} Vessels without ground truth that the real tracker follows ({names}) are in the replica; "
+            "the don't-care rule is off, so their plots and tracks count as clutter and false tracks."
+        )
     return (
         f"{RANKING_NOTE} Vessels without ground truth that the real tracker follows ({names}) are in the replica and "
         "are don't-care regions of the clutter and false-track terms, in both datasets."
@@ -152,6 +157,51 @@ def ranking_markdown(result: FidelityResult) -> list[str]:
     else:
         bullets = [f"* `{model}`: {why}" for model, why in notes]
     return [*lines, "", *bullets, *([""] if bullets else []), ranking_note(result), ""]
+
+
+def plot_terms_markdown(result: FidelityResult) -> list[str]:
+    """The radar plot-level terms per model (:mod:`seatwin.evaluation.plot_terms`): real, model and the signed
+    difference with their 95 % intervals, and whether it is resolved."""
+    models = [(label, m.plot_terms) for label, m in result.models.items() if m.plot_terms]
+    if not models:
+        return []
+    lines = [
+        "## Radar plot-level terms (plots against ground truth, held-out window, seeds pooled)",
+        "",
+        "Difference = model − real; *resolved* when its 95 % interval excludes 0. Bearing errors are positive "
+        "clockwise; range errors positive beyond the target.",
+        "",
+        "| model | term | real | model | difference | 95 % CI of difference | resolved |",
+        "|---|---|---:|---:|---:|---|---|",
+    ]
+    for label, terms in models:
+        for t in terms.values():
+            name = f"{t['name']} [{t['unit']}]" if t["unit"] else t["name"]
+            lines.append(
+                f"| {label} | {name} | {_f(t['real'])} | {_f(t['synthetic'])} | {_f(t['difference'])} | "
+                f"{_ci(t['difference_ci'])} | {'yes' if t['resolved'] else 'no'} |"
+            )
+    lines += ["", f"`{result.primary_model}`:", ""]
+    lines += [f"* {t['sentence']}" for t in result.models[result.primary_model].plot_terms.values()]
+    if result.plot_term_leads:
+        lines += [
+            "",
+            f"Lead of `{result.primary_model}` over each other model per term: |other − real| − |{result.primary_model} − real| "
+            "with its 95 % interval (real resampled once for both); **bold** = resolved (interval above 0), "
+            "negative = the other model is closer.",
+            "",
+            "| model | " + " | ".join(next(iter(result.plot_term_leads.values()))) + " |",
+            "|---|" + "---|" * len(next(iter(result.plot_term_leads.values()))),
+        ]
+        for label, leads in result.plot_term_leads.items():
+            cells = [
+                "–"
+                if d["value"] is None
+                else (f"**{d['value']:.3g}**" if d["resolved"] else f"{d['value']:.3g}") + f" {_ci(d['ci'])}"
+                for d in leads.values()
+            ]
+            lines.append(f"| {label} | " + " | ".join(cells) + " |")
+    return [*lines, ""]
 
 
 def ranking_figure(rows: list[dict[str, Any]], title: str) -> bytes:
@@ -235,6 +285,7 @@ def render_markdown(result: FidelityResult) -> str:
         + " — the unpaired score of the error distributions, coverage, clutter and false tracks (0: indistinguishable).",
         "",
         *ranking_markdown(result),
+        *plot_terms_markdown(result),
         "## AHED by radar model and agent",
         "",
         "| model | agent | AHED | 95 % CI | seed std | AHED (printed 5.30) | floor (synt. vs synt.) | mean COVDIFF | common "
@@ -303,8 +354,12 @@ def render_markdown(result: FidelityResult) -> str:
         "the clutter gate from the target) and false tracks per scan; everything inside the evaluation window.",
         "* Un-truthed vessels (boats without GNSS that the real tracker follows away from the target: "
         + (untruthed_names(result) or "none")
-        + ") are in the replica and are don't-care regions in the score: their plots are not clutter, a track on them "
-        "is not a false track, in both datasets.",
+        + (
+            ") are in the replica and are don't-care regions in the score: their plots are not clutter, a track on them "
+            "is not a false track, in both datasets."
+            if result.dont_care
+            else ") are in the replica; the don't-care rule is off (their plots and tracks count as clutter and false tracks)."
+        ),
         "* Headings from velocity (the dataset has none); target box size assumed; world posed once per scan.",
         "* `n_common`, `n_only_real`, `n_only_synthetic` are means over seeds.",
         "* `index.html` (the comparison report) shows seed 0 of each model over the whole recording; the "

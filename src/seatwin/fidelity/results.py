@@ -140,6 +140,11 @@ class ModelResult:
     """Per agent, the first seed's comparison over the whole recording (for the HTML report)."""
     example_plots: list[NDArray[np.float64]] | None = None
     """The first seed's plots per scan."""
+    plot_terms: dict[str, Any] = field(default_factory=dict)
+    """The radar plot-level terms on the evaluation window, all seeds pooled against the real recording
+    (:func:`seatwin.evaluation.plot_terms.radar_plot_terms`, as dicts): per term real, model, signed difference."""
+    plot_samples: list[Any] = field(default_factory=list, repr=False)
+    """Per seed, the :class:`seatwin.evaluation.plot_terms.RadarPlotSample` the terms were computed from."""
 
     @property
     def synthetic_statistics_mean(self) -> PlotStatistics:
@@ -149,6 +154,7 @@ class ModelResult:
         return {
             "agents": {a: asdict(d) for a, d in self.agents.items()},
             "synthetic_statistics_mean": asdict(self.synthetic_statistics_mean),
+            "plot_terms": self.plot_terms,
             "radar": self.radar,
         }
 
@@ -177,6 +183,10 @@ class FidelityResult:
     primary_agent: str
     real_tracks: dict[str, Tracks]
     data: JoyrideData
+    dont_care: bool = True
+    """Whether the un-truthed vessels were don't-care regions of the score's plot terms."""
+    plot_term_leads: dict[str, dict[str, dict]] = field(default_factory=dict)
+    """Per other model, per radar plot-level term, the primary model's lead (:func:`seatwin.fidelity.method.plot_term_leads`)."""
 
     @property
     def primary(self) -> AgentResult:
@@ -233,6 +243,7 @@ class FidelityResult:
             "real_statistics": asdict(self.real_statistics),
             "assumptions": self.assumptions,
             "ranking": self.ranking(),
+            "plot_term_leads": self.plot_term_leads,
             "models": {label: m.to_json() for label, m in self.models.items()},
         }
         if self.radar_fit is not None:

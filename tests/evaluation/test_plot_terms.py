@@ -1,0 +1,142 @@
+"""Radar plot-level terms (seatwin.evaluation.plot_terms) and the data-chosen block length, against hand-computed values."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from seatwin.evaluation import TruthSet, TruthTrack
+from seatwin.evaluation.bootstrap import block_length, runs_block_length
+from seatwin.evaluation.plot_terms import RadarPlotSample, radar_plot_sample, radar_plot_terms, signed_term, wrap_deg
+from seatwin.evaluation.score import ScoreOptions
+
+
+def _still(name: str, north: float, east: float, n: int = 4) -> TruthTrack:
+    t = np.arange(n, dtype=float)
+    return TruthTrack(name, t, np.full(n, north), np.full(n, east), np.zeros(n), np.zeros(n), "<test>")
+
+
+def test_wrap_deg():
+    assert wrap_deg([190.0, -180.0, 180.0, 359.0, 0.5]).tolist() == pytest.approx([-170.0, -180.0, -180.0, -1.0, 0.5])
+
+
+def test_block_length_from_the_autocorrelation():
+    # A square wave of half-period 5 (n = 200): autocorrelation 1 − 2k/5 at lags k ≤ 5 (0.6, 0.2, −0.2 …);
+    # the first below 2/√200 = 0.141 is lag 3.
+    x = np.tile(np.repeat([1.0, 0.0], 5), 20)
+    assert block_length(x) == 3
+    assert block_length(np.tile([1.0, -1.0], 50)) == 1  # anticorrelated at lag 1
+    assert block_length(np.ones(50)) == 1 and block_length([1.0, 2.0]) == 1
+    ar = np.zeros(3000)
+    e = np.random.default_rng(0).normal(size=3000)
+    for k in range(1, 3000):
+        ar[k] = 0.95 * ar[k - 1] + e[k]
+    # AR(1), φ = 0.95: ρ(k) = 0.95^k < 2/√3000 = 0.037 from k ≈ 65 (sampling noise moves it a little).
+    assert 40 <= block_length(ar) <= 90
+    assert block_length(ar, cap=20) == 20
+    assert runs_block_length([x, np.tile([1.0, -1.0], 50)]) == 3
+    assert block_length(np.r_[x, np.nan, np.nan]) == 3  # NaN (scans without a value) left out
+
+
+def test_radar_plot_sample_hand_computed():
+    truth = TruthSet({"target": _still("target", 1000.0, 0.0)}, "<test>")
+    boat = TruthSet({"boat": _still("boat", 0.0, 500.0)}, "<test>")
+    b = np.radians(1.0)
+    plots = [
+        np.array(
+            [[1010.0 * np.cos(b), 1010.0 * np.sin(b)], [0.0, 505.0]]
+        ),  # target plot 10 m beyond, 1° clockwise; one near the boat
+        np.array([[-500.0, 0.0]]),  # clutter only: the target missed
+        np.array(
+            [[995.0, 0.0], [1000.0 * np.cos(-b), 1000.0 * np.sin(-b)]]
+        ),  # two in the gate (neither is clutter): the nearer counts
+        np.empty((0, 2)),
+    ]
+    s = radar_plot_sample(np.arange(4.0), np.zeros((4, 2)), plots, truth, "target", 60.0)
+    assert s.target_range.tolist() == pytest.approx([1000.0] * 4)
+    np.testing.assert_allclose(s.range_error, [10.0, np.nan, -5.0, np.nan], atol=1e-9)
+    np.testing.assert_allclose(s.bearing_error, [1.0, np.nan, 0.0, np.nan], atol=1e-9)
+    assert s.clutter.tolist() == [1, 1, 0, 0] and s.detected.tolist() == [1.0, 0.0, 1.0, 0.0]
+    with_boat = radar_plot_sample(np.arange(4.0), np.zeros((4, 2)), plots, truth, "target", 60.0, dont_care=boat)
+    assert with_boat.clutter.tolist() == [0, 1, 0, 0]  # the plot near the un-truthed boat is not clutter
+    moved = radar_plot_sample(np.arange(4.0), np.full((4, 2), [0.0, 100.0]), plots, truth, "target", 60.0)
+    assert moved.target_range[0] == pytest.approx(np.hypot(1000.0, 100.0))  # range and bearing from the antenna
+
+
+def test_signed_term_values_direction_and_interval():
+    o = ScoreOptions(n_boot=300, seed=3)
+    real = [np.tile([-2.0, -1.0], 30)]  # mean −1.5
+    synth = [np.tile([0.0, 1.0], 20), np.tile([0.0, 1.0, np.nan], 10)]  # mean 0.5 (NaN: scans without a plot)
+    t = signed_term("bearing bias", "°", real, synth, np.mean, o, ("far clockwise", "far anticlockwise"))
+    assert (t.real, t.synthetic, t.difference) == pytest.approx((-1.5, 0.5, 2.0))
+    assert t.counts == {"n_real": 60, "n_synthetic": 60}
+    assert t.real_ci[0] <= -1.5 <= t.real_ci[1] and t.difference_ci[0] > 0.0 and t.resolved
+    assert "model is 2 ° too far clockwise" in t.sentence() and "(resolved)" in t.sentence()
+    same = signed_term("bearing bias", "°", real, [np.tile([-1.0, -2.0], 25)], np.mean, o)
+    assert same.difference == pytest.approx(0.0) and not same.resolved
+    assert same.difference_ci[0] < 0.0 < same.difference_ci[1]
+    again = signed_term("bearing bias", "°", real, synth, np.mean, o, ("far clockwise", "far anticlockwise"))
+    assert again.to_dict() == t.to_dict()  # reproducible
+    few = signed_term("x", "m", [np.ones(5)], synth, np.mean, o)
+    assert few.difference is None and few.reason == "fewer than 10 values (5 real, 60 synthetic)" and not few.resolved
+    assert "not computed" in few.sentence()
+
+
+def test_radar_plot_terms_hand_computed():
+    n = 40
+    rng_t = np.r_[np.full(20, 100.0), np.full(20, 700.0)]
+    real = RadarPlotSample(
+        rng_t,
+        np.where(np.arange(n) % 2 == 0, 4.0, np.nan),  # detected at every other scan
+        np.where(np.arange(n) % 2 == 0, -2.0, np.nan),
+        np.full(n, 2, dtype=np.int64),
+    )
+    synth = RadarPlotSample(rng_t, np.r_[np.full(20, 2.0), np.full(20, 6.0)], np.zeros(n), np.ones(n, dtype=np.int64))
+    terms = radar_plot_terms([real], [synth], area_km2=4.0, options=ScoreOptions(n_boot=100))
+    assert terms["bearing_bias"].difference == pytest.approx(2.0) and terms["bearing_bias"].resolved
+    assert terms["range_bias"].real == pytest.approx(4.0) and terms["range_bias"].synthetic == pytest.approx(4.0)
+    assert terms["range_sigma"].real == pytest.approx(0.0) and terms["range_sigma"].synthetic == pytest.approx(
+        1.4826 * 2.0  # robust σ: errors 2 and 6, median 4, every deviation 2
+    )
+    assert (terms["pd_0_250m"].real, terms["pd_0_250m"].synthetic) == pytest.approx((0.5, 1.0))
+    assert terms["pd_500_1000m"].difference == pytest.approx(0.5)
+    assert terms["pd_1000_1500m"].reason.startswith("fewer than 10 values (0 real")
+    assert (terms["clutter_per_scan"].real, terms["clutter_per_scan"].synthetic) == pytest.approx((2.0, 1.0))
+    assert terms["clutter_per_km2"].difference == pytest.approx(-0.25)
+    assert "too sparse" in terms["clutter_per_km2"].sentence()
+
+
+def test_score_block_none_chooses_it_from_the_data():
+    """ScoreOptions(block=None): the score's bootstraps take the block length from the series' autocorrelation —
+    on counts that persist for 10 scans, the interval is wider than an i.i.d. bootstrap's."""
+    from seatwin.evaluation.score import rate_score
+
+    rng = np.random.default_rng(1)
+    real = [np.repeat(rng.poisson(3.0, 30), 10)]
+    synth = [np.repeat(rng.poisson(3.0, 30), 10)]
+    auto = rate_score(real, synth, ScoreOptions(block=None, n_boot=300))
+    iid = rate_score(real, synth, ScoreOptions(block=1, n_boot=300))
+    assert auto.value == iid.value
+    assert auto.ci_high - auto.ci_low > 1.5 * (iid.ci_high - iid.ci_low)
+
+
+def test_lead_of_the_closer_model():
+    from seatwin.evaluation.plot_terms import lead, radar_term_specs
+
+    n = 60
+    rng = np.random.default_rng(2)
+
+    def sample(bias: float) -> RadarPlotSample:
+        return RadarPlotSample(np.full(n, 300.0), rng.normal(0.0, 5.0, n), rng.normal(bias, 0.5, n), np.zeros(n, dtype=np.int64))
+
+    real, near, far = [sample(-1.8)], [sample(-1.6)], [sample(0.0)]
+    spec = radar_term_specs(1.0)["bearing_bias"]
+    mean = [float(np.mean(s[0].bearing_error)) for s in (real, near, far)]
+    got = lead(spec, real, near, far, ScoreOptions(n_boot=300))
+    assert got.value == pytest.approx(abs(mean[2] - mean[0]) - abs(mean[1] - mean[0]))
+    assert got.value > 1.0 and got.resolved and got.ci[0] <= got.value <= got.ci[1]
+    back = lead(spec, real, far, near, ScoreOptions(n_boot=300))
+    assert back.value == pytest.approx(-got.value) and not back.resolved
+    assert (
+        lead(spec, real, near, [sample(-1.8)], ScoreOptions(n_boot=300)).resolved is False
+    )  # B (the true bias) is the closer one: no lead
