@@ -46,6 +46,7 @@ def test_the_table_is_found():
 
 
 @pytest.mark.slow
+@pytest.mark.timeout(2400)  # every README command in turn: ~7 min alone, longer on a loaded machine
 def test_readme_commands_run_as_written(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(ROOT)
     shared = (ROOT.parent / "shared" / "data").is_dir()
