@@ -120,7 +120,8 @@ def test_simulate_process_finishes_the_bag_on_sigterm(tmp_path: Path, fmt: str, 
     manifest = json.loads((run_dir / "manifest.json").read_text())
     assert manifest["completed"] is False and manifest["error"] == "interrupted (SIGTERM)"
     cams = {t: v["count"] for t, v in manifest["topics"].items() if t.startswith("/camera/")}
-    assert len(cams) == 9 and len(set(cams.values())) == 1, cams  # every camera frame set whole
+    # every camera frame set whole: 3 cameras × (image, camera_info, labels, annotations)
+    assert len(cams) == 12 and len(set(cams.values())) == 1, cams
     with open_bag(run_dir) as bag:
         assert not bag.recovered
         assert {t: i.count for t, i in bag.topics.items()} == {t: v["count"] for t, v in manifest["topics"].items()}

@@ -218,10 +218,10 @@ def test_onnx_detections_become_camera_bearings_and_tracks(tmp_path: Path, capsy
     out = tmp_path / "t.csv"
     args = ["track", str(rec_dir), "--out", str(out), "--sensors", "lidar,camera", "--tuning", "synthetic", "--no-progress"]
     assert run([*args, "--detector", "onnx", "--model", str(model)]) == 0 and out.is_file()
-    assert run([*args, "--detector", "onnx", "--model", str(tmp_path / "absent.onnx")]) == 2
+    assert run([*args, "--detector", "onnx", "--model", str(tmp_path / "absent.onnx"), "--overwrite"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "absent.onnx: no such ONNX model file" in err[0]
-    assert run([*args, "--detector", "onnx", "--model", str(model), "--classes", "12"]) == 2
+    assert run([*args, "--detector", "onnx", "--model", str(model), "--classes", "12", "--overwrite"]) == 2
     assert "classes: the model has 10 classes" in capsys.readouterr().err
 
 
