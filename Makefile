@@ -34,7 +34,7 @@ demo: $(STAMP)
 # does. pytest's exit status 5 (no test collected) is reported as such.
 test: $(STAMP)
 	@lint=0; $(MAKE) --no-print-directory lint || lint=$$?; \
-	$(PY) -m pytest -q; rc=$$?; \
+	$(PY) -m pytest -q --durations=25; rc=$$?; \
 	if [ $$rc -eq 5 ]; then echo "no tests were collected"; fi; \
 	if [ $$lint -ne 0 ]; then echo "make test: lint failed (see above; 'make lint' shows it again)"; fi; \
 	if [ $$rc -ne 0 ]; then exit $$rc; fi; exit $$lint
