@@ -46,15 +46,22 @@ class LandRaster:
         """The same grid placed in a scenario frame by ``alignment``."""
         return replace(self, alignment=alignment)
 
-    def is_water(self, north: np.ndarray, east: np.ndarray, outside: bool = True) -> np.ndarray:
-        """True where scenario-frame (north, east) falls on a water cell; points outside the grid count
-        as ``outside`` (water for building a harbour, land for masking sensor returns)."""
+    def cells(self, north: np.ndarray, east: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(row, column, inside the grid) of scenario-frame (north, east), taken into the raster's own frame by
+        the alignment first."""
         if not self.alignment.is_identity:
             north, east = self.alignment.to_map(north, east)
         r = np.floor((np.asarray(north, float) - self.origin_north) / self.resolution).astype(np.int64)
         c = np.floor((np.asarray(east, float) - self.origin_east) / self.resolution).astype(np.int64)
+        r, c = np.broadcast_arrays(r, c)
         inside = (r >= 0) & (r < self.water.shape[0]) & (c >= 0) & (c < self.water.shape[1])
-        out = np.full(np.broadcast(r, c).shape, outside, dtype=bool)
+        return r, c, inside
+
+    def is_water(self, north: np.ndarray, east: np.ndarray, outside: bool = True) -> np.ndarray:
+        """True where scenario-frame (north, east) falls on a water cell; points outside the grid count
+        as ``outside`` (water for building a harbour, land for masking sensor returns)."""
+        r, c, inside = self.cells(north, east)
+        out = np.full(r.shape, outside, dtype=bool)
         out[inside] = self.water[r[inside], c[inside]]
         return out
 

@@ -93,13 +93,8 @@ class RasterMask:
 
     def clear_of_land(self, north: ArrayLike, east: ArrayLike, margin: ArrayLike) -> NDArray[np.bool_]:
         """On a water cell farther than ``margin`` [m] from every land cell (centre to centre)."""
-        r = self.raster
         n, e, m = np.broadcast_arrays(np.asarray(north, float), np.asarray(east, float), np.asarray(margin, float))
-        if not r.alignment.is_identity:  # scenario frame -> the raster's own frame, as is_water does
-            n, e = (np.asarray(v, float) for v in r.alignment.to_map(n, e))
-        i = np.floor((n - r.origin_north) / r.resolution).astype(np.int64)
-        j = np.floor((e - r.origin_east) / r.resolution).astype(np.int64)
-        inside = (i >= 0) & (i < r.water.shape[0]) & (j >= 0) & (j < r.water.shape[1])
+        i, j, inside = self.raster.cells(n, e)  # the cells is_water looks up (alignment applied)
         out = np.zeros(n.shape, dtype=bool)
         out[inside] = self.land_distance()[i[inside], j[inside]] > m[inside]
         return out

@@ -7,8 +7,6 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from seatwin.defaults import DEFAULT_SENSORS  # the one default of the CLI and the library (lidar and cameras)
-
 if TYPE_CHECKING:
     from seatwin.scenario import Scenario
     from seatwin.sim import SimulationResult, SimulationSettings
@@ -31,9 +29,9 @@ def simulate_run(
     """Simulate ``scenario`` (built-in name, .yaml, Gemini .csv — ``date`` for TimeOfDay CSVs — or a
     :class:`Scenario`) into the new run directory ``out`` from POSIX ``start`` or ``start_offset`` seconds after the
     scenario's start (default: its start); ``changes`` override ``settings`` fields (without ``settings``, the
-    sensors are :data:`DEFAULT_SENSORS` unless ``sensors`` is given); ``on_frame(sensor, t, frame, data)`` sees every
-    frame (``--stream``). ``out`` must be new or empty; ``overwrite`` replaces an earlier run there (never an
-    input, never a file seatwin did not write)."""
+    sensors are :data:`seatwin.defaults.DEFAULT_SENSORS` unless ``sensors`` is given); ``on_frame(sensor, t,
+    frame, data)`` sees every frame (``--stream``). ``out`` must be new or empty; ``overwrite`` replaces an
+    earlier run there (never an input, never a file seatwin did not write)."""
     from seatwin.recording.manifest import check_new_run
     from seatwin.scenario import Scenario
     from seatwin.scenario.load import load_scenario
@@ -46,8 +44,6 @@ def simulate_run(
 
         raise ParameterError("start_offset", "give a start time or an offset after the scenario's start, not both")
     sc = scenario if isinstance(scenario, Scenario) else load_scenario(str(scenario), date=date)
-    if settings is None:
-        changes.setdefault("sensors", DEFAULT_SENSORS)
     chosen = SimulationSettings.model_construct(**{**(settings or SimulationSettings()).model_dump(), **changes})
     inputs = [*([] if isinstance(scenario, Scenario) else [scenario]), *run_inputs(sc, chosen)]
     check_new_run(out, "out", inputs=inputs, overwrite=overwrite)  # the same check as simulate_scenario's, naming ``out``
