@@ -392,7 +392,8 @@ def odometry(store: Typestore, t: float, world_frame: str, body_frame: str, v: V
 
 
 def nav_sat_fix(store: Typestore, t: float, frame_id: str, v: VesselPose, origin: GeodeticOrigin | None) -> Any:
-    """``sensor_msgs/NavSatFix`` of the vessel's reference point (:func:`vessel_llh`)."""
+    """``sensor_msgs/NavSatFix`` of the vessel's reference point (:func:`vessel_llh`): ground truth, so its
+    covariance is known and zero (``COVARIANCE_TYPE_KNOWN``)."""
     T = store.types
     lat, lon, alt = vessel_llh(v, origin)
     NSS = T["sensor_msgs/msg/NavSatStatus"]
@@ -403,5 +404,5 @@ def nav_sat_fix(store: Typestore, t: float, frame_id: str, v: VesselPose, origin
         longitude=float(lon),
         altitude=float(alt),
         position_covariance=np.zeros(9, dtype=np.float64),
-        position_covariance_type=T["sensor_msgs/msg/NavSatFix"].COVARIANCE_TYPE_UNKNOWN,
+        position_covariance_type=T["sensor_msgs/msg/NavSatFix"].COVARIANCE_TYPE_KNOWN,
     )
