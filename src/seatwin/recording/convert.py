@@ -127,8 +127,13 @@ def convert_bag(
 
 def cdr_converter(rec: Any) -> tuple[Any, Any]:
     """(ROS 2 type store of the open recording ``rec``'s own definitions, bytes, msgtype → CDR bytes)."""
-    store = _with_header(rec.store, ros1=False)
-    return store, _converter(rec.format, "mcap", store)
+    return cdr_converter_for(rec.store, rec.format)
+
+
+def cdr_converter_for(store: Any, fmt: str) -> tuple[Any, Any]:
+    """:func:`cdr_converter` for messages of bag format ``fmt`` built from type store ``store`` (a writer's)."""
+    ros2 = _with_header(store, ros1=False)
+    return ros2, _converter(fmt, "mcap", ros2)
 
 
 def _converter(src_fmt: str, fmt: str, ros2_store: Any) -> Any:

@@ -57,19 +57,19 @@ F = TypeVar("F", bound=Callable[..., Any])
 
 
 def _timed(method: F) -> F:
-    """Add the time spent in an outermost public call to ``self.timing["total_s"]``."""
+    """Add the time spent in an outermost public call to ``self.timing["total_s"]`` (less ``on_write``'s)."""
 
     @functools.wraps(method)
     def wrapper(self: RecordingWriter, *args: Any, **kwargs: Any) -> Any:
         if self._depth:
             return method(self, *args, **kwargs)
         self._depth = 1
-        t0 = _time.perf_counter()
+        t0, live0 = _time.perf_counter(), self.timing["live_s"]
         try:
             return method(self, *args, **kwargs)
         finally:
             self._depth = 0
-            self.timing["total_s"] += _time.perf_counter() - t0
+            self.timing["total_s"] += _time.perf_counter() - t0 - (self.timing["live_s"] - live0)
 
     return wrapper  # type: ignore[return-value]
 
@@ -88,7 +88,8 @@ class RecordingWriter:
 
     ``scenario_file`` is copied into ``run_dir`` (a file already there is just named in the
     manifest); ``sensors`` and ``metadata`` go into the manifest as given (JSON-serialisable).
-    ``ros_distro`` picks a rosbag2 bag's metadata version (:data:`~seatwin.defaults.ROS_DISTROS`).
+    ``ros_distro`` picks a rosbag2 bag's metadata version (:data:`~seatwin.defaults.ROS_DISTROS`);
+    ``on_write`` sees every message written (:attr:`on_write`).
     """
 
     def __init__(
@@ -108,8 +109,12 @@ class RecordingWriter:
         row_step_zero: bool = False,
         fsync: bool = False,
         ros_distro: str = DEFAULT_ROS_DISTRO,
+        on_write: Callable[[str, str, int, bytes | memoryview], None] | None = None,
     ) -> None:
         self.format = check_format(fmt)
+        self.on_write = on_write
+        """Called with (topic, type, log time ns, serialised bytes) of every message once it is in the bag (a live
+        view: :class:`~seatwin.recording.live.LiveServer`)."""
         ros_distro = check_ros_distro(ros_distro)
         self.run_dir = Path(run_dir)
         self.topics = topics or TopicConfig()
@@ -138,9 +143,9 @@ class RecordingWriter:
         self._gt = GroundTruthEncoder(self.format)
         self._clouds = PointCloudEncoder(self.format, row_step_zero)
         self.bag = bag_path(self.run_dir, self.format)
-        self.timing = {"total_s": 0.0, "serialize_s": 0.0, "write_s": 0.0}
+        self.timing = {"total_s": 0.0, "serialize_s": 0.0, "write_s": 0.0, "live_s": 0.0}
         """Seconds spent in this writer's calls (``total_s``; recording_share = total_s / wall time),
-        of which serialising and handing bytes to the bag storage."""
+        of which serialising and handing bytes to the bag storage; ``live_s``: in ``on_write`` (not in the others)."""
         self._depth = 0
         self._frame_depth = 0
         self._frame_block = _FrameBlock(self._begin_frame, self._end_frame)
@@ -231,6 +236,15 @@ class RecordingWriter:
             counts = self.counts
             for topic, _, _ in items:
                 counts[topic] += 1
+            if self.on_write is not None:
+                t_live = _time.perf_counter()
+                try:
+                    for topic, msgtype, data in items:
+                        self.on_write(topic, msgtype, stamp, data)
+                finally:
+                    live = _time.perf_counter() - t_live
+                    self.timing["live_s"] += live
+                    t0 += live  # not the bag's time
             if self._t0 is None or t < self._t0:
                 self._t0 = t
             if self._t1 is None or t > self._t1:
