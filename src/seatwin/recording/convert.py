@@ -148,6 +148,17 @@ def _converter(src_fmt: str, fmt: str, ros2_store: Any) -> Any:
 
 def _copy_run(run_dir: Path, old_bag: Path, manifest: dict[str, Any], out: Path, bag: Path, fmt: str, ros_distro: str) -> None:
     """The run directory's other files, and its manifest naming the new bag."""
+    copy_run_files(run_dir, old_bag, out)
+    m = dict(manifest)
+    m.update(format=fmt, bag=bag.name, converted_from={"format": manifest.get("format"), "bag": manifest.get("bag")})
+    m.pop("ros_distro", None)
+    if fmt != "ros1":
+        m["ros_distro"] = ros_distro
+    write_manifest(out, m)
+
+
+def copy_run_files(run_dir: Path, old_bag: Path, out: Path) -> None:
+    """Copy a run directory's files but its bag and manifest (scenario, notes, …) into ``out``."""
     for item in run_dir.iterdir():
         if item.resolve() == old_bag.resolve() or item.name == MANIFEST_NAME:
             continue
@@ -155,9 +166,3 @@ def _copy_run(run_dir: Path, old_bag: Path, manifest: dict[str, Any], out: Path,
             shutil.copytree(item, out / item.name)
         else:
             shutil.copy2(item, out / item.name)
-    m = dict(manifest)
-    m.update(format=fmt, bag=bag.name, converted_from={"format": manifest.get("format"), "bag": manifest.get("bag")})
-    m.pop("ros_distro", None)
-    if fmt != "ros1":
-        m["ros_distro"] = ros_distro
-    write_manifest(out, m)
