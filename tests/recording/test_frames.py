@@ -7,6 +7,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from seatwin.geo.frames import FLU_TO_FRD, NED_TO_ENU, mount_matrix, yaw_matrix
 from seatwin.recording import StaticTransform, TopicConfig, open_bag
@@ -208,3 +210,43 @@ def test_perception_reads_old_and_new_recordings_alike(tmp_path: Path) -> None:
     for a, b in zip(scans["new"], scans["old"]):
         assert (a.time, a.sensor) == (b.time, b.sensor)
         np.testing.assert_allclose(a.z, b.z, atol=1e-9)
+
+
+_angle = st.floats(-math.pi, math.pi, allow_nan=False)
+_offset = st.floats(-50.0, 50.0, allow_nan=False)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    roll=_angle,
+    pitch=st.floats(-1.4, 1.4),
+    yaw=_angle,
+    t=st.tuples(_offset, _offset, _offset),
+    axes=st.sampled_from(["flu", "optical", "frd"]),
+    heading=_angle,
+    pos=st.tuples(_offset, _offset),
+)
+def test_any_mount_through_the_tree_is_the_mount(
+    roll: float, pitch: float, yaw: float, t: tuple, axes: str, heading: float, pos: tuple
+) -> None:
+    """For any mount (rolled or not) and vessel pose: the sensor's pose in ``world_ned`` through
+    map → odom → base_link (→ upright) → sensor equals body pose ∘ mount, and ``body_mounts`` gives the mount back."""
+    from seatwin.recording import VesselPose
+    from seatwin.recording.tf_tree import base_link_pose, vessel_transforms
+
+    tp = TopicConfig()
+    r = mount_matrix(axes, roll=roll, pitch=pitch, yaw=yaw)
+    tree = TfTree(sensor_mount(tp, OWN, f"{OWN}/s", t, r, roll if axes == "flu" else 0.0))
+    tree.add_all(vessel_transforms(tp, OWN))
+    tree.add("map", "world_ned", (0, 0, 0), quaternion_from_matrix(NED_TO_ENU))
+    v = VesselPose(OWN, pos[0], pos[1], heading)
+    tree.add(f"{OWN}/odom", f"{OWN}/base_link", *base_link_pose(v))
+    got = tree.lookup("world_ned", f"{OWN}/s")
+    body = yaw_matrix(heading)
+    np.testing.assert_allclose(got.rotation, body @ r, atol=1e-9)
+    np.testing.assert_allclose(got.translation, body @ np.asarray(t) + [pos[0], pos[1], 0.0], atol=1e-9)
+    m = body_mounts([*sensor_mount(tp, OWN, f"{OWN}/s", t, r, roll if axes == "flu" else 0.0), *vessel_transforms(tp, OWN)])
+    np.testing.assert_allclose(m[f"{OWN}/s"].rotation, r, atol=1e-9)
+    np.testing.assert_allclose(m[f"{OWN}/s"].translation, t, atol=1e-9)
+    inv = tree.lookup(f"{OWN}/s", "world_ned")  # and back
+    np.testing.assert_allclose((inv @ got).rotation, np.eye(3), atol=1e-9)
