@@ -16,6 +16,7 @@ LAYOUT = ROOT / "docs" / "foxglove" / "seatwin-layout.json"
 BROWSER = next((shutil.which(b) for b in ("chromium", "chromium-browser", "google-chrome") if shutil.which(b)), None)
 
 
+@pytest.mark.slow
 def test_layout_preview_in_a_browser(tmp_path: Path) -> None:
     from PIL import Image
 
