@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import astuple
 from pathlib import Path
 
 import numpy as np
@@ -11,6 +12,7 @@ from recording_helpers import ORIGIN  # noqa: E402  (conftest puts the folder on
 from seatwin.recording import RecordingWriter, VesselPose, open_bag
 from seatwin.recording import messages as M
 from seatwin.recording.fast_cdr import GroundTruthEncoder
+from seatwin.recording.tf_tree import base_link_pose, vessel_transforms
 from seatwin.scenario.builtin import builtin_scenario
 from seatwin.sim.poses import poses_from_scenario
 
@@ -56,13 +58,18 @@ def _generic_ground_truth(w: RecordingWriter, t: float, vessels: list[VesselPose
     tp, tfs = w.topics, []
     if not w._static_written:
         _generic_static(w, t, [])
+    if not w.vessels:  # each vessel's fixed frames, when it first appears
+        fixed = [s for v in vessels for s in vessel_transforms(tp, v.name, gnss=v.ownship and w.origin is not None)]
+        w.write(tp.tf_static, t, M.tf_message(w.store, [M.transform_stamped(w.store, t, *astuple(s)) for s in fixed]))
     for v in vessels:
+        w.vessels[v.name] = "ownship" if v.ownship else "target"
         body = tp.body(v.name)
         w.write(tp.topic("pose", vessel=v.name), t, M.pose_stamped(w.store, t, tp.world_frame, v))
         w.write(tp.topic("odom", vessel=v.name), t, M.odometry(w.store, t, tp.world_frame, body, v))
         if v.ownship and w.origin is not None:
-            w.write(tp.topic("fix", vessel=v.name), t, M.nav_sat_fix(w.store, t, body, v, w.origin))
-        tfs.append(M.transform_stamped(w.store, t, tp.world_frame, body, (v.north, v.east, v.down), M.quaternion_yaw(v.heading)))
+            w.write(tp.topic("fix", vessel=v.name), t, M.nav_sat_fix(w.store, t, tp.frame("gnss_frame", v.name), v, w.origin))
+        odom, base = tp.frame("odom_frame", v.name), tp.frame("base_frame", v.name)
+        tfs.append(M.transform_stamped(w.store, t, odom, base, *base_link_pose(v)))
     w.write(tp.tf, t, M.tf_message(w.store, tfs))
 
 

@@ -75,7 +75,7 @@ def test_vessel_markers_follow_the_body_frames(run: Path) -> None:
     with open_bag(run) as rec:
         markers = list(rec.messages("/ground_truth/markers"))
         poses = list(rec.messages(f"/ground_truth/{sc.vessels[0].name}/pose"))
-        tf_children = {t.child_frame_id for m in rec.messages("/tf") for t in m.msg.transforms}
+        tf_children = {t.child_frame_id for tp in ("/tf", "/tf_static") for m in rec.messages(tp) for t in m.msg.transforms}
     assert len(poses) == 3 and len(markers) == 1  # once a second: the first ground-truth step of 0.3 s
     assert markers[0].log_time_ns == poses[0].log_time_ns
     for m in markers:
@@ -91,7 +91,7 @@ def test_vessel_markers_follow_the_body_frames(run: Path) -> None:
             assert box.header.stamp.sec == box.header.stamp.nanosec == 0  # the latest /tf
 
 
-def test_layout_opens_topics_a_run_has(run: Path) -> None:
+def test_layout_opens_topics_a_run_has(run: Path, tmp_path: Path) -> None:
     layout = json.loads((ROOT / "docs" / "foxglove" / "seatwin-layout.json").read_text())
     panels = layout["configById"]
     named: set[str] = set()
@@ -101,12 +101,18 @@ def test_layout_opens_topics_a_run_has(run: Path) -> None:
         named |= {mode["imageTopic"], mode["calibrationTopic"], *mode["annotations"]}
     (scene,) = [p for k, p in panels.items() if k.startswith("3D!")]
     named |= set(scene["topics"])
-    with open_bag(run) as rec:
+    from seatwin.pipeline.track import track_into_run
+
+    _, tracked = track_into_run(run, tmp_path / "tracked")  # the run with its tracks (seatwin track --out-bag)
+    with open_bag(tracked.path) as rec:
         missing = named - set(rec.topics)
-        frames = {t.child_frame_id for m in rec.messages("/tf") for t in m.msg.transforms}
+        dynamic = {t.child_frame_id for m in rec.messages("/tf") for t in m.msg.transforms}
+        fixed = {(t.header.frame_id, t.child_frame_id) for m in rec.messages("/tf_static") for t in m.msg.transforms}
     assert not missing, missing
-    assert {"/lidar/points", "/radar/detections", "/ground_truth/markers"} <= set(scene["topics"])
-    assert scene["followTf"] in frames
+    assert {"/lidar/points", "/radar/detections", "/ground_truth/markers", "/tracks/scene"} <= set(scene["topics"])
+    assert scene["followTf"] in dynamic and scene["followTf"].endswith("/base_link")  # the ownship's REP-103 body
+    roots = {p for p, _ in fixed} - {c for _, c in fixed} - dynamic
+    assert roots == {scene["layers"]["grid"]["frameId"]} == {"map"}  # the grid lies in the tree's one root
 
     def leaves(node: object) -> list[str]:
         return [node] if isinstance(node, str) else [x for k in ("first", "second") for x in leaves(node[k])]  # type: ignore[index]

@@ -64,10 +64,14 @@ def test_roundtrip_all_formats(tmp_path: Path, fmt: str) -> None:
         assert fixes[2].longitude == pytest.approx(float(lon), abs=1e-12)
 
         statics = {(s.parent, s.child): s for s in rec.static_transforms()}
-        assert set(statics) == {("world", "world_ned"), ("milliAmpere/base_link_frd", "lidar")}
+        fixed = {("map", "world_ned"), ("milliAmpere/base_link_frd", "lidar"), ("milliAmpere/base_link", "milliAmpere/gnss")}
+        for v in ("milliAmpere", "Havfruen"):
+            fixed |= {("map", f"{v}/odom"), (f"{v}/base_link", f"{v}/base_link_frd")}
+        assert set(statics) == fixed  # the ownship's NavSatFix in its GNSS antenna frame
+        assert {f.header.frame_id for f in fixes} == {"milliAmpere/gnss"}
         tf = [m.msg for m in rec.messages("/tf")]
-        assert [t.child_frame_id for t in tf[0].transforms] == ["milliAmpere/base_link_frd", "Havfruen/base_link_frd"]
-        assert tf[0].transforms[0].header.frame_id == "world_ned"
+        assert [t.child_frame_id for t in tf[0].transforms] == ["milliAmpere/base_link", "Havfruen/base_link"]
+        assert [t.header.frame_id for t in tf[0].transforms] == ["milliAmpere/odom", "Havfruen/odom"]
 
     inner = tmp_path / "run" / ("recording.bag" if fmt == "ros1" else "recording")
     with open_bag(inner) as rec:  # the bag itself, inside its run directory: the manifest is found
@@ -124,7 +128,9 @@ def test_empty_sweep_and_custom_topics(tmp_path: Path) -> None:
     with open_bag(tmp_path / "run") as rec:
         (c,) = list(rec.point_clouds())
         assert c.width == 0 and c.points.size == 0
-        assert "/gt/milliAmpere/odometry" in rec.topics and "/tf_static" not in rec.topics
+        assert "/gt/milliAmpere/odometry" in rec.topics
+        parents = {s.parent for s in rec.static_transforms()}  # no display frame: no map above world_ned and odom
+        assert parents == {"milliAmpere/base_link", "Havfruen/base_link"}
         assert set(rec.ground_truth()) == {"milliAmpere", "Havfruen"}
 
 

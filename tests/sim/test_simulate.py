@@ -78,14 +78,16 @@ def test_recording_contents(tmp_path, scenario):
         assert len(clouds) == 10
         c = clouds[0]
         assert c.stamp == pytest.approx(scenario.start, abs=1e-6)
-        assert c.frame_id == "lidar"
+        assert c.frame_id == "milliAmpere/lidar"  # per-vessel namespace (REP-105 multi-robot)
         assert c.points.dtype.names == ("x", "y", "z", "intensity", "ring", "time")
         assert c.points.dtype.itemsize == 24 and len(c.points) > 100
         assert c.points["time"].min() >= 0.0 and c.points["time"].max() < 0.1
         truth = bag.ground_truth()
         assert set(truth) == {v.name for v in scenario.vessels}
         tf = bag.static_transforms()
-        assert any(t.child == "lidar" and t.parent == "milliAmpere/base_link_frd" for t in tf)
+        parents = {t.child: t.parent for t in tf}  # upside down: rolled below an upright mount on base_link
+        assert parents["milliAmpere/lidar"] == "milliAmpere/lidar_upright"
+        assert parents["milliAmpere/lidar_upright"] == "milliAmpere/base_link"
 
 
 def test_same_seed_bit_identical_other_seed_changes_only_random_parts(tmp_path, scenario):

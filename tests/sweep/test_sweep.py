@@ -12,7 +12,7 @@ import pytest
 from seatwin.cli.main import run
 from seatwin.cli.sweep import parse_strengths
 from seatwin.errors import ParameterError
-from seatwin.recording.messages import quaternion_from_matrix
+from seatwin.perception.frames import recording_mounts
 from seatwin.sensors.lidar_config import MILLIAMPERE_LIDAR_MOUNT
 from seatwin.sim import SimulationSettings
 from seatwin.sweep import DEGRADATIONS, SweepSettings, degradation, degradations, run_sweep
@@ -104,11 +104,9 @@ def test_biased_mount_is_simulated_but_nominal_mount_recorded(tmp_path):
         sensors=("lidar",),
     )
     with open_bag(tmp_path / "r") as rec:
-        st = [s for s in rec.static_transforms() if s.child == "lidar"]
+        mounts = recording_mounts(rec.static_transforms())
         sensors = (rec.manifest or {}).get("sensors")
-    assert len(st) == 1
-    q = np.asarray(quaternion_from_matrix(MILLIAMPERE_LIDAR_MOUNT.rotation()))
-    assert min(np.abs(np.asarray(st[0].rotation) - q).max(), np.abs(np.asarray(st[0].rotation) + q).max()) < 1e-9
+    np.testing.assert_allclose(mounts["milliAmpere/lidar"].rotation, MILLIAMPERE_LIDAR_MOUNT.rotation(), atol=1e-9)
     text = json.dumps(sensors)
     assert "mount_simulated" in text and str(MILLIAMPERE_LIDAR_MOUNT.yaw_deg + 5.0) in text
 

@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import contextlib
+from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import typer
 
@@ -44,6 +47,10 @@ def register(app: typer.Typer) -> None:
             help="Also stream lidar clouds, camera images and radar spokes to this SensorStreaming server.",
         ),
         overwrite: bool = overwrite_option(),
+        live: bool = typer.Option(
+            False, "--live", help="Serve the run to Foxglove (WebSocket, see `seatwin view`) while the steps make it."
+        ),
+        live_port: int = typer.Option(8765, "--live-port", help="WebSocket port of --live (0: any free one)."),
         max_step: float | None = typer.Option(
             None,
             "--max-step",
@@ -66,6 +73,7 @@ def register(app: typer.Typer) -> None:
         """
         from seatwin.api.server import serve
         from seatwin.cli.output import split_list
+        from seatwin.cli.simulate import start_live
         from seatwin.interrupts import interrupts_set_event, wait
         from seatwin.outputs import remove_outputs
         from seatwin.recording.manifest import check_new_run
@@ -77,7 +85,8 @@ def register(app: typer.Typer) -> None:
             from seatwin.api.streaming import SensorStreamer
 
             streamer = SensorStreamer(stream)
-        with interrupts_set_event() as stop:  # before the address is announced: a signal right after it finishes the bag
+        viewer = start_live(live_port, 0.0, fmt.value) if live else None  # the client's steps set the pace
+        with interrupts_set_event() as stop, _closing(viewer):  # before the address is announced: a signal finishes the bag
             handle = serve(
                 out,
                 port=port,
@@ -96,6 +105,8 @@ def register(app: typer.Typer) -> None:
                 max_step_s=max_step,
                 max_message_bytes=max_message_bytes,
             )
+            if viewer is not None:
+                viewer.attach(handle.sim.writer)  # before the address is announced: no step has run yet
             typer.echo(f"serving GeminiOSPInterface.Simulation on {handle.address}; recording into {out} (Ctrl-C to finish)")
             try:
                 wait(stop)
@@ -108,3 +119,13 @@ def register(app: typer.Typer) -> None:
             f"{state}: {handle.servicer.steps} steps ({handle.servicer.rejected} refused), "
             f"{result.simulated_s:.1f} s simulated; frames {result.frames}; recording in {result.run_dir}"
         )
+
+
+@contextlib.contextmanager
+def _closing(viewer: Any) -> Iterator[None]:
+    """Close the --live server (if any) on leaving."""
+    try:
+        yield
+    finally:
+        if viewer is not None:
+            viewer.close()

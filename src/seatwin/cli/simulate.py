@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from enum import Enum
 from pathlib import Path
+from typing import Any
 
 import typer
 
@@ -80,6 +81,13 @@ def register(app: typer.Typer) -> None:
         stream: str | None = typer.Option(
             None, "--stream", metavar="HOST:PORT", help="Also stream lidar clouds and radar spokes to a SensorStreaming server."
         ),
+        live: bool = typer.Option(
+            False, "--live", help="Serve the run to Foxglove (WebSocket, see `seatwin view`) while it is made."
+        ),
+        live_port: int = typer.Option(8765, "--live-port", help="WebSocket port of --live (0: any free one)."),
+        live_speed: float = typer.Option(
+            1.0, "--live-speed", help="With --live: hold the run to this × real time (0: as fast as it goes)."
+        ),
         overwrite: bool = overwrite_option(),
     ) -> None:
         """Simulate the ownship's sensors along a scenario and record a ROS bag (MCAP by default).
@@ -97,31 +105,37 @@ def register(app: typer.Typer) -> None:
             from seatwin.api.streaming import SensorStreamer
 
             streamer = SensorStreamer(stream)
-        result = simulate_run(
-            scenario,
-            out,
-            on_frame=streamer.on_frame if streamer is not None else None,
-            overwrite=overwrite,
-            start=start,
-            start_offset=offset,
-            duration=duration,
-            harbour=harbour,
-            date=_date(date),
-            progress=progress and not quiet,
-            sensors=split_list(sensors, "sensors"),
-            seed=seed,
-            lidar_preset=lidar_preset,
-            lidar_mode=lidar_mode.value,
-            ray_drop=ray_drop,
-            range_noise=range_noise,
-            dissipation=dissipation,
-            fmt=fmt.value,
-            ros_distro=ros_distro.value,
-            radar_config=radar,
-            radar_spokes=streamer is not None,
-            camera_hfov_deg=camera_hfov,
-            **({"camera_distortion": split_list(camera_distortion, "camera_distortion")} if camera_distortion else {}),
-        )
+        viewer = start_live(live_port, live_speed, fmt.value) if live else None
+        try:
+            result = simulate_run(
+                scenario,
+                out,
+                on_frame=streamer.on_frame if streamer is not None else None,
+                on_write=viewer.publish if viewer is not None else None,
+                overwrite=overwrite,
+                start=start,
+                start_offset=offset,
+                duration=duration,
+                harbour=harbour,
+                date=_date(date),
+                progress=progress and not quiet,
+                sensors=split_list(sensors, "sensors"),
+                seed=seed,
+                lidar_preset=lidar_preset,
+                lidar_mode=lidar_mode.value,
+                ray_drop=ray_drop,
+                range_noise=range_noise,
+                dissipation=dissipation,
+                fmt=fmt.value,
+                ros_distro=ros_distro.value,
+                radar_config=radar,
+                radar_spokes=streamer is not None,
+                camera_hfov_deg=camera_hfov,
+                **({"camera_distortion": split_list(camera_distortion, "camera_distortion")} if camera_distortion else {}),
+            )
+        finally:
+            if viewer is not None:
+                viewer.close()
         if streamer is not None:
             streamer.close()
             typer.echo(f"streamed to {stream}: {streamer.sent}")
@@ -133,3 +147,20 @@ def register(app: typer.Typer) -> None:
         )
         if not result.completed:
             raise typer.Exit(130)
+
+
+def start_live(port: int, speed: float, fmt: str) -> Any:
+    """A started :class:`~seatwin.recording.live.LiveServer` (its errors naming the --live-* flags); says where."""
+    from seatwin.errors import ParameterError
+    from seatwin.recording.live import LiveServer
+
+    server = None
+    try:
+        server = LiveServer(port=port, speed=speed, fmt=fmt)
+        bound = server.start()
+    except ParameterError as exc:
+        if server is not None:
+            server.close()
+        raise ParameterError(f"--live-{exc.param}", exc.detail) from None
+    typer.echo(f"live view: Foxglove → Open connection → Foxglove WebSocket → ws://127.0.0.1:{bound}", err=True)
+    return server

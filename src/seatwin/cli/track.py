@@ -24,7 +24,15 @@ def register(app: typer.Typer) -> None:
         recording: Path = typer.Argument(
             ..., metavar="RECORDING", help="A run directory, rosbag2 directory, or .mcap/.db3/.bag file."
         ),
-        out: Path = typer.Option(..., "--out", metavar="TRACKS.csv", help="Where to write the track file."),
+        out: Path | None = typer.Option(None, "--out", metavar="TRACKS.csv", help="Where to write the track file."),
+        out_bag: Path | None = typer.Option(
+            None,
+            "--out-bag",
+            metavar="DIR",
+            help="Also (or instead) write a copy of the run with the tracks in its bag: /tracks/odom (nav_msgs/Odometry), "
+            "/tracks/markers (visualization_msgs/MarkerArray) and /tracks/scene (foxglove_msgs/SceneUpdate). "
+            "The input is not modified.",
+        ),
         sensors: str | None = typer.Option(
             None,
             "--sensors",
@@ -92,11 +100,15 @@ def register(app: typer.Typer) -> None:
         ),
     ) -> None:
         from seatwin.cli.output import progress_counter, split_list
+        from seatwin.errors import ParameterError
         from seatwin.outputs import check_output_file
-        from seatwin.pipeline.track import TrackOptions, track_recording
+        from seatwin.pipeline.track import TrackOptions, track_into_run, track_recording
         from seatwin.settings import validated
 
-        check_output_file(out, "out", inputs=[recording, model, tuning, map_spec], overwrite=overwrite)
+        if out is None and out_bag is None:
+            raise ParameterError("out", "nowhere to write the tracks: give --out TRACKS.csv, --out-bag DIR, or both")
+        if out is not None:
+            check_output_file(out, "out", inputs=[recording, model, tuning, map_spec], overwrite=overwrite)
         options = validated(
             TrackOptions,
             dict(
@@ -115,14 +127,22 @@ def register(app: typer.Typer) -> None:
             ),
         )
         with progress_counter("tracking", enabled=progress) as advance:
-            result = track_recording(recording, options, progress=advance)
+            if out_bag is not None:
+                result, copy = track_into_run(recording, out_bag, options, overwrite=overwrite, progress=advance)
+            else:
+                result, copy = track_recording(recording, options, progress=advance), None
         from seatwin.evaluation import write_tracks
 
         if result.bad_crc:
             typer.echo(f"warning: {recording}: {result.bad_crc} CRC mismatch(es) ignored (--ignore-crc)", err=True)
-        result.tracks.source = str(out)
-        write_tracks(out, result.tracks)
+        wrote = []
+        if out is not None:
+            result.tracks.source = str(out)
+            write_tracks(out, result.tracks)
+            wrote.append(str(out))
+        if copy is not None:
+            wrote.append(f"{copy.path} (the run with /tracks/odom, /tracks/markers, /tracks/scene)")
         typer.echo(
             f"{result.n_scans} scans ({', '.join(result.sensors)}), tuning {result.tuning!r}: {result.n_tracks} tracks, "
-            f"{result.n_confirmed} confirmed; {result.elapsed_s:.2f} s; wrote {out}"
+            f"{result.n_confirmed} confirmed; {result.elapsed_s:.2f} s; wrote {' and '.join(wrote)}"
         )

@@ -8,7 +8,9 @@ rotation about the down axis.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -72,3 +74,11 @@ def sensor_pose(north: float, east: float, heading: float, mount: Mount | None =
     Rb = yaw_matrix(heading)
     own = np.array([north, east, down], dtype=float)
     return SensorPose(own + Rb @ np.asarray(mount.translation, float), Rb @ mount.rotation, Rb, own)
+
+
+def recording_mounts(static_transforms: Iterable[Any]) -> dict[str, Mount]:
+    """Every frame's mount in its vessel's FRD body frame from a recording's /tf_static
+    (:func:`seatwin.recording.tf_tree.body_mounts`: REP-105 trees and older recordings alike)."""
+    from seatwin.recording.tf_tree import body_mounts
+
+    return {f: Mount(tuple(float(v) for v in m.translation), m.rotation) for f, m in body_mounts(static_transforms).items()}  # type: ignore[arg-type]

@@ -21,7 +21,7 @@ from numpy.typing import NDArray
 from seatwin.errors import InputError, ParameterError
 from seatwin.perception.camera_frames import CameraDetector, default_detector, detected_frames, missing_camera
 from seatwin.perception.camera_frames import camera_topics as cam_topics
-from seatwin.perception.frames import Mount, SensorPose, sensor_pose
+from seatwin.perception.frames import SensorPose, recording_mounts, sensor_pose
 from seatwin.perception.lidar import LidarClustering, lidar_scan
 from seatwin.perception.map_mask import NoMask, WaterMask
 from seatwin.perception.measurements import Scan
@@ -122,7 +122,7 @@ def scans_from_recording(
         raise InputError(rec.path, f"no {' or '.join(sensors)} topics in this recording; it has {sorted(rec.topics)}")
     n_camera = len(set(_stamps(rec, camera_topics))) if camera_topics else 0
     total = sum(rec.topics[t].count for t in wanted) + n_camera
-    mounts = {st.child: Mount.from_quaternion(st.translation, st.rotation) for st in rec.static_transforms()}
+    mounts = recording_mounts(rec.static_transforms())
     own = _ownship(rec, truth)
 
     def pose_for(frame_id: str, t: float) -> SensorPose:

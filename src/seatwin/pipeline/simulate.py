@@ -23,6 +23,7 @@ def simulate_run(
     date: dt.date | None = None,
     progress: bool | Callable[[float, float], None] = True,
     on_frame: Callable[[Any, float, int, Any], None] | None = None,
+    on_write: Callable[[str, str, int, bytes | memoryview], None] | None = None,
     overwrite: bool = False,
     **changes: Any,
 ) -> SimulationResult:
@@ -30,7 +31,8 @@ def simulate_run(
     :class:`Scenario`) into the new run directory ``out`` from POSIX ``start`` or ``start_offset`` seconds after the
     scenario's start (default: its start); ``changes`` override ``settings`` fields (without ``settings``, the
     sensors are :data:`seatwin.defaults.DEFAULT_SENSORS` unless ``sensors`` is given); ``on_frame(sensor, t,
-    frame, data)`` sees every frame (``--stream``). ``out`` must be new or empty; ``overwrite`` replaces an
+    frame, data)`` sees every frame (``--stream``), ``on_write(topic, type, log time ns, bytes)`` every message
+    recorded (a live view: :class:`~seatwin.recording.live.LiveServer`). ``out`` must be new or empty; ``overwrite`` replaces an
     earlier run there (never an input, never a file seatwin did not write)."""
     from seatwin.recording.manifest import check_new_run
     from seatwin.scenario import Scenario
@@ -57,5 +59,14 @@ def simulate_run(
             )
         start = sc.start + float(start_offset)
     return simulate_scenario(
-        sc, out, settings, start=start, duration=duration, progress=progress, on_frame=on_frame, overwrite=overwrite, **changes
+        sc,
+        out,
+        settings,
+        start=start,
+        duration=duration,
+        progress=progress,
+        on_frame=on_frame,
+        on_write=on_write,
+        overwrite=overwrite,
+        **changes,
     )

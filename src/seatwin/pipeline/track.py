@@ -240,3 +240,35 @@ def track_recording(
         _time.perf_counter() - t_start,
         bad_crc,
     )
+
+
+def track_into_run(
+    recording: str | Path,
+    out_bag: str | Path,
+    options: TrackOptions | None = None,
+    *,
+    overwrite: bool = False,
+    progress: Callable[[int, int], None] | None = None,
+    **changes: Any,
+) -> tuple[TrackingResult, Any]:
+    """Track ``recording`` (as :func:`track_recording`) and write a copy of it at ``out_bag`` with the tracks as ROS
+    messages beside the sensors (:mod:`seatwin.recording.tracks`: ``/tracks/odom``, ``/tracks/markers``,
+    ``/tracks/scene``); the input is never modified, an existing ``out_bag`` only replaced with ``overwrite``.
+    Returns the tracking result and the copy's :class:`~seatwin.recording.convert.ConvertResult`."""
+    from seatwin.recording.annotate import bag_format, copy_with_messages
+    from seatwin.recording.manifest import check_bag_output
+    from seatwin.recording.tracks import track_messages
+
+    if not overwrite:
+        check_bag_output(Path(out_bag), recording, False, "out_bag")  # before the tracking's time is spent
+    result = track_recording(recording, options, progress=progress, **changes)
+    messages = track_messages(result.tracks, bag_format(recording))
+    added = {
+        "what": "tracks",
+        "sensors": list(result.sensors),
+        "tuning": result.tuning,
+        "agent": validated(TrackOptions, {**(options or TrackOptions()).model_dump(), **changes}).agent,
+        "tracks": result.n_tracks,
+        "confirmed": result.n_confirmed,
+    }
+    return result, copy_with_messages(recording, out_bag, messages, added=added, overwrite=overwrite, param="out_bag")

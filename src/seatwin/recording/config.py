@@ -45,10 +45,21 @@ class TopicConfig:
     tf_static: str = "/tf_static"
     world_frame: str = "world_ned"
     """Frame of all ground truth: the scenario's local NED frame (REP-103 ``_ned`` suffix)."""
-    display_frame: str | None = "world"
-    """ENU parent of ``world_frame`` on /tf_static, so RViz/Foxglove show the scene upright (None: omit)."""
+    display_frame: str | None = "map"
+    """The REP-105 ``map`` frame: ENU at the scenario's origin, the root of the tf tree — parent of
+    ``world_frame`` and of every vessel's ``odom_frame`` on /tf_static (None: omit both links).
+    Recordings before REP-105 frames named it ``world``."""
+    odom_frame: str = "{vessel}/odom"
+    """A vessel's REP-105 ``odom`` frame (ENU; equal to ``map``: ground truth does not drift)."""
+    base_frame: str = "{vessel}/base_link"
+    """A vessel's REP-103 body frame (x forward, y left, z up): its pose in ``odom_frame`` on /tf."""
     body_frame: str = "{vessel}/base_link_frd"
-    """Vessel body frame (x forward, y starboard, z down) on /tf."""
+    """The thesis's vessel body frame (x forward, y starboard, z down): a fixed child of ``base_frame``;
+    odometry, markers and the mounts in the manifest use it."""
+    sensor_frame: str = "{vessel}/{sensor}"
+    """A sensor's frame on its carrier (``{sensor}`` alone gives the un-namespaced ids of older recordings)."""
+    gnss_frame: str = "{vessel}/gnss"
+    """The GNSS antenna frame of a vessel (the NavSatFix's ``frame_id``), at its reference point."""
 
     def topic(self, kind: str, *, sensor: str | None = None, vessel: str | None = None) -> str:
         """The topic name of ``kind`` (a field name) for a sensor or a vessel."""
@@ -57,7 +68,16 @@ class TopicConfig:
         return "/" + ros_name(name.lstrip("/")) if name.startswith("/") else ros_name(name)
 
     def body(self, vessel: str) -> str:
-        return ros_name(self.body_frame.format(vessel=ros_name(vessel)))
+        """The vessel's FRD body frame (the thesis's ``base_link_frd``)."""
+        return self.frame("body_frame", vessel)
+
+    def frame(self, kind: str, vessel: str, sensor: str = "") -> str:
+        """The frame id of ``kind`` (``body_frame``, ``base_frame``, ``odom_frame``, ``gnss_frame``, ``sensor_frame``)."""
+        return ros_name(getattr(self, kind).format(vessel=ros_name(vessel), sensor=ros_name(sensor)))
+
+    def sensor(self, vessel: str | None, sensor: str) -> str:
+        """A sensor's frame id: ``{vessel}/{sensor}`` by default; the bare name for a sensor without a carrier."""
+        return ros_name(sensor) if vessel is None else self.frame("sensor_frame", vessel, sensor)
 
     def vessel_from_topic(self, kind: str, topic: str) -> str | None:
         """Invert a ``{vessel}`` template: the vessel name in ``topic``, or None when it does not match."""

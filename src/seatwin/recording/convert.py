@@ -127,8 +127,13 @@ def convert_bag(
 
 def cdr_converter(rec: Any) -> tuple[Any, Any]:
     """(ROS 2 type store of the open recording ``rec``'s own definitions, bytes, msgtype → CDR bytes)."""
-    store = _with_header(rec.store, ros1=False)
-    return store, _converter(rec.format, "mcap", store)
+    return cdr_converter_for(rec.store, rec.format)
+
+
+def cdr_converter_for(store: Any, fmt: str) -> tuple[Any, Any]:
+    """:func:`cdr_converter` for messages of bag format ``fmt`` built from type store ``store`` (a writer's)."""
+    ros2 = _with_header(store, ros1=False)
+    return ros2, _converter(fmt, "mcap", ros2)
 
 
 def _converter(src_fmt: str, fmt: str, ros2_store: Any) -> Any:
@@ -143,6 +148,17 @@ def _converter(src_fmt: str, fmt: str, ros2_store: Any) -> Any:
 
 def _copy_run(run_dir: Path, old_bag: Path, manifest: dict[str, Any], out: Path, bag: Path, fmt: str, ros_distro: str) -> None:
     """The run directory's other files, and its manifest naming the new bag."""
+    copy_run_files(run_dir, old_bag, out)
+    m = dict(manifest)
+    m.update(format=fmt, bag=bag.name, converted_from={"format": manifest.get("format"), "bag": manifest.get("bag")})
+    m.pop("ros_distro", None)
+    if fmt != "ros1":
+        m["ros_distro"] = ros_distro
+    write_manifest(out, m)
+
+
+def copy_run_files(run_dir: Path, old_bag: Path, out: Path) -> None:
+    """Copy a run directory's files but its bag and manifest (scenario, notes, …) into ``out``."""
     for item in run_dir.iterdir():
         if item.resolve() == old_bag.resolve() or item.name == MANIFEST_NAME:
             continue
@@ -150,9 +166,3 @@ def _copy_run(run_dir: Path, old_bag: Path, manifest: dict[str, Any], out: Path,
             shutil.copytree(item, out / item.name)
         else:
             shutil.copy2(item, out / item.name)
-    m = dict(manifest)
-    m.update(format=fmt, bag=bag.name, converted_from={"format": manifest.get("format"), "bag": manifest.get("bag")})
-    m.pop("ros_distro", None)
-    if fmt != "ros1":
-        m["ros_distro"] = ros_distro
-    write_manifest(out, m)

@@ -18,6 +18,7 @@ covariances all zero as there. ``tests/recording/test_fast_cdr.py`` compares the
 
 from __future__ import annotations
 
+import math
 import struct
 from collections.abc import Sequence
 from typing import Any
@@ -37,6 +38,10 @@ ODOMETRY = "nav_msgs/msg/Odometry"
 NAV_SAT_FIX = "sensor_msgs/msg/NavSatFix"
 TF_MESSAGE = "tf2_msgs/msg/TFMessage"
 POINT_CLOUD2 = "sensor_msgs/msg/PointCloud2"
+
+VesselFrames = tuple[str, "str | None", str, str]
+"""A vessel's frame ids for :meth:`GroundTruthEncoder.step`: (FRD body, GNSS antenna or None for no
+NavSatFix, odom, FLU base_link)."""
 
 
 class _Layout:
@@ -96,7 +101,7 @@ class GroundTruthEncoder:
         self._lead_bytes = bytes(4) if self.ros1 else CDR_HEADER  # ROS 1 seq 0 | CDR header
         T = M.typestore(fmt).types
         nss = T["sensor_msgs/msg/NavSatStatus"]
-        self._fix_status = (nss.STATUS_FIX, nss.SERVICE_GPS, T[NAV_SAT_FIX].COVARIANCE_TYPE_UNKNOWN)
+        self._fix_status = (nss.STATUS_FIX, nss.SERVICE_GPS, T[NAV_SAT_FIX].COVARIANCE_TYPE_KNOWN)
 
     def _str(self, text: str) -> tuple[int, bytes]:
         s = self._strings.get(text)
@@ -155,21 +160,22 @@ class GroundTruthEncoder:
         return self._tf(M.split_stamp(t), transforms)
 
     def step(
-        self, t: float, world_frame: str, vessels: Sequence[tuple[M.VesselPose, str, bool]], origin: GeodeticOrigin | None
+        self, t: float, world_frame: str, vessels: Sequence[tuple[M.VesselPose, VesselFrames]], origin: GeodeticOrigin | None
     ) -> list[bytes]:
-        """One ground-truth step: per (vessel, body frame, with fix) its PoseStamped, Odometry and, if asked,
-        NavSatFix; then one TFMessage of all vessels — the messages above, sharing the stamp and quaternions."""
+        """One ground-truth step: per vessel its PoseStamped and Odometry (in ``world_frame``, FRD body) and,
+        with a GNSS frame, NavSatFix; then one TFMessage of every vessel's FLU ``base_link`` in its ``odom``."""
         stamp = M.split_stamp(t)
         head = self._head(stamp)
         out: list[bytes] = []
         tfs = []
-        for v, body, fix in vessels:
+        for v, (body, gnss, odom, base) in vessels:
             q = M.quaternion_yaw(v.heading)
             out.append(self._pose(head, world_frame, v, q))
             out.append(self._odometry(head, world_frame, body, v, q))
-            if fix:
-                out.append(self._fix(stamp, body, v, origin))
-            tfs.append((world_frame, body, (v.north, v.east, v.down), q))
+            if gnss is not None:
+                out.append(self._fix(stamp, gnss, v, origin))
+            q_base = M.quaternion_yaw(math.pi / 2 - v.heading)  # = tf_tree.base_link_pose
+            tfs.append((odom, base, (v.east, v.north, -v.down), q_base))
         if tfs:
             out.append(self._tf(stamp, tfs))
         return out

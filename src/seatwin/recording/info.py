@@ -23,7 +23,7 @@ def bag_info(path: str | os.PathLike[str], scan: bool = True, ignore_crc: bool =
     ``ignore_crc``: MCAP chunks whose CRC does not match are read, and counted in ``bad_crc``.
 
     With ``scan`` every message's log time is read (not decoded) to give each topic's own span
-    and mean rate (count − 1)/span; without, rate = (count − 1) / bag duration.
+    and mean rate (count − 1)/span; without, rate = (count − 1) / bag duration. ``/tf_static`` has no rate.
     """
     with Recording(path, ReadOptions.from_env(ignore_crc=ignore_crc)) as rec:
         spans: dict[str, list[int]] = {}
@@ -37,7 +37,9 @@ def bag_info(path: str | os.PathLike[str], scan: bool = True, ignore_crc: bool =
         topics = {}
         for name, t in sorted(rec.topics.items()):
             n = counts.get(name, t.count) if scan else t.count
-            if scan and name in spans and n > 1 and spans[name][1] > spans[name][0]:
+            if name == rec.topic_config.tf_static:  # latched: fixed frames, written when known, not at a rate
+                rate = None
+            elif scan and name in spans and n > 1 and spans[name][1] > spans[name][0]:
                 rate = (n - 1) / ((spans[name][1] - spans[name][0]) * 1e-9)
             else:
                 rate = (n - 1) / duration if duration > 0 and n > 1 else None

@@ -94,18 +94,18 @@ def check_new_run(
     return check_run_folder(run_dir, param, names, _is_seatwin_run, inputs=inputs, overwrite=overwrite)
 
 
-def check_bag_output(target: Path, source: str | os.PathLike[str], overwrite: bool) -> None:
-    """For a command that writes a new run or bag ``target`` from ``source`` (repair, convert): refuse an
-    output that is the input or inside it, or that exists (unless ``overwrite``: then an earlier seatwin run
-    folder or a bag is removed), or that cannot be written."""
+def check_bag_output(target: Path, source: str | os.PathLike[str], overwrite: bool, param: str = "out") -> None:
+    """For a command that writes a new run or bag ``target`` (its parameter ``param``) from ``source`` (repair,
+    convert, track): refuse an output that is the input or inside it, or that exists (unless ``overwrite``: then
+    an earlier seatwin run folder or a bag is removed), or that cannot be written."""
     from seatwin.outputs import OutputExistsError, check_writable, refuse_inputs
 
-    refuse_inputs(target, "out", [source])
+    refuse_inputs(target, param, [source])
     if not (target.exists() or target.is_symlink()):
-        check_writable(target, "out")
+        check_writable(target, param)
         return
     if not overwrite:
-        raise OutputExistsError("out", target)
+        raise OutputExistsError(param, target)
     if target.is_dir() and not target.is_symlink():
         if read_manifest(target) is None and not (target / "metadata.yaml").is_file():
             raise InputError(target, "exists and is not a seatwin run or a rosbag2 bag: not replaced; choose a new output")

@@ -74,6 +74,30 @@ FOXGLOVE_MSGS: dict[str, str] = {
     "string text\nfloat64 font_size\nfoxglove_msgs/Color text_color\nfoxglove_msgs/Color background_color\n" + _KV,
     "foxglove_msgs/msg/ImageAnnotations": "builtin_interfaces/Time timestamp\nfoxglove_msgs/CircleAnnotation[] circles\n"
     "foxglove_msgs/PointsAnnotation[] points\nfoxglove_msgs/TextAnnotation[] texts\n" + _KV,
+    # 3-D scene entities (tracks): the primitives as in foxglove/schemas' ros2 definitions, without per-primitive metadata
+    "foxglove_msgs/msg/ArrowPrimitive": "geometry_msgs/Pose pose\nfloat64 shaft_length\nfloat64 shaft_diameter\n"
+    "float64 head_length\nfloat64 head_diameter\nfoxglove_msgs/Color color",
+    "foxglove_msgs/msg/CubePrimitive": "geometry_msgs/Pose pose\ngeometry_msgs/Vector3 size\nfoxglove_msgs/Color color",
+    "foxglove_msgs/msg/SpherePrimitive": "geometry_msgs/Pose pose\ngeometry_msgs/Vector3 size\nfoxglove_msgs/Color color",
+    "foxglove_msgs/msg/CylinderPrimitive": "geometry_msgs/Pose pose\ngeometry_msgs/Vector3 size\nfloat64 bottom_scale\n"
+    "float64 top_scale\nfoxglove_msgs/Color color",
+    "foxglove_msgs/msg/LinePrimitive": "uint8 LINE_STRIP=0\nuint8 LINE_LOOP=1\nuint8 LINE_LIST=2\nuint8 type\n"
+    "geometry_msgs/Pose pose\nfloat64 thickness\nbool scale_invariant\ngeometry_msgs/Point[] points\n"
+    "foxglove_msgs/Color color\nfoxglove_msgs/Color[] colors\nuint32[] indices",
+    "foxglove_msgs/msg/TriangleListPrimitive": "geometry_msgs/Pose pose\ngeometry_msgs/Point[] points\n"
+    "foxglove_msgs/Color color\nfoxglove_msgs/Color[] colors\nuint32[] indices",
+    "foxglove_msgs/msg/TextPrimitive": "geometry_msgs/Pose pose\nbool billboard\nfloat64 font_size\nbool scale_invariant\n"
+    "foxglove_msgs/Color color\nstring text",
+    "foxglove_msgs/msg/ModelPrimitive": "geometry_msgs/Pose pose\ngeometry_msgs/Vector3 scale\nfoxglove_msgs/Color color\n"
+    "bool override_color\nstring url\nstring media_type\nuint8[] data",
+    "foxglove_msgs/msg/SceneEntityDeletion": "builtin_interfaces/Time timestamp\nuint8 MATCHING_ID=0\nuint8 ALL=1\n"
+    "uint8 type\nstring id",
+    "foxglove_msgs/msg/SceneEntity": "builtin_interfaces/Time timestamp\nstring frame_id\nstring id\n"
+    "builtin_interfaces/Duration lifetime\nbool frame_locked\n" + _KV + "\nfoxglove_msgs/ArrowPrimitive[] arrows\n"
+    "foxglove_msgs/CubePrimitive[] cubes\nfoxglove_msgs/SpherePrimitive[] spheres\n"
+    "foxglove_msgs/CylinderPrimitive[] cylinders\nfoxglove_msgs/LinePrimitive[] lines\n"
+    "foxglove_msgs/TriangleListPrimitive[] triangles\nfoxglove_msgs/TextPrimitive[] texts\nfoxglove_msgs/ModelPrimitive[] models",
+    "foxglove_msgs/msg/SceneUpdate": "foxglove_msgs/SceneEntityDeletion[] deletions\nfoxglove_msgs/SceneEntity[] entities",
 }
 """``foxglove_msgs`` ROS 2 definitions of the Foxglove SDK's current schema (comments left out), in dependency
 order; registered in both typestores (:mod:`seatwin.recording.foxglove` builds the messages)."""
@@ -392,7 +416,8 @@ def odometry(store: Typestore, t: float, world_frame: str, body_frame: str, v: V
 
 
 def nav_sat_fix(store: Typestore, t: float, frame_id: str, v: VesselPose, origin: GeodeticOrigin | None) -> Any:
-    """``sensor_msgs/NavSatFix`` of the vessel's reference point (:func:`vessel_llh`)."""
+    """``sensor_msgs/NavSatFix`` of the vessel's reference point (:func:`vessel_llh`): ground truth, so its
+    covariance is known and zero (``COVARIANCE_TYPE_KNOWN``)."""
     T = store.types
     lat, lon, alt = vessel_llh(v, origin)
     NSS = T["sensor_msgs/msg/NavSatStatus"]
@@ -403,5 +428,5 @@ def nav_sat_fix(store: Typestore, t: float, frame_id: str, v: VesselPose, origin
         longitude=float(lon),
         altitude=float(alt),
         position_covariance=np.zeros(9, dtype=np.float64),
-        position_covariance_type=T["sensor_msgs/msg/NavSatFix"].COVARIANCE_TYPE_UNKNOWN,
+        position_covariance_type=T["sensor_msgs/msg/NavSatFix"].COVARIANCE_TYPE_KNOWN,
     )

@@ -17,10 +17,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from seatwin.errors import InputError, ParameterError
-
-DEFAULT_PORT = 8765
-"""Foxglove's default WebSocket port."""
+from seatwin.errors import ParameterError
+from seatwin.recording.foxglove_ws import DEFAULT_PORT, check_port, foxglove_sdk, ros2_channel, start_server
 
 
 @dataclass
@@ -43,27 +41,21 @@ class RecordingViewer:
 
     def start(self) -> int:
         """Read the run, open a channel per topic and start the server; return the port it listens on."""
-        try:
-            import foxglove
-        except ImportError:  # pragma: no cover - foxglove-sdk is a dependency
-            raise InputError("foxglove-sdk", "not installed: pip install foxglove-sdk (seatwin's dependencies list it)") from None
         from seatwin.recording.convert import cdr_converter
         from seatwin.recording.reader import open_bag
 
-        if not 0 <= self.port <= 65535:
-            raise ParameterError("port", f"expected 0 (any free port) to 65535, got {self.port}")
+        foxglove_sdk()
+        check_port(self.port)
         with open_bag(self.run) as rec:
             store, convert = cdr_converter(rec)
             for topic, info in rec.topics.items():
-                text, _ = store.generate_msgdef(info.msgtype, ros_version=2)
-                schema = foxglove.Schema(name=info.msgtype, encoding="ros2msg", data=text.encode())
-                self.topics[topic] = _Topic(foxglove.Channel(topic, schema=schema, message_encoding="cdr"), info.msgtype)
+                self.topics[topic] = _Topic(ros2_channel(store, topic, info.msgtype), info.msgtype)
             self.messages = [(topic, ts, bytes(convert(data, msgtype))) for topic, msgtype, ts, data in rec.raw_messages()]
         try:
-            self.server = foxglove.start_server(name=f"seatwin view {self.run.name}", host=self.host, port=self.port)
-        except Exception as exc:  # noqa: BLE001 - the SDK's bind failure: one clear line
+            self.server = start_server(f"seatwin view {self.run.name}", self.host, self.port)
+        except ParameterError:
             self.close()
-            raise ParameterError("port", f"cannot listen on {self.host}:{self.port}: {exc}") from None
+            raise
         return int(self.server.port)
 
     def play(self, speed: float = 1.0, stop: threading.Event | None = None) -> int:

@@ -46,28 +46,30 @@ from seatwin.recording.fast_cdr import (
     TF_MESSAGE,
     GroundTruthEncoder,
     PointCloudEncoder,
+    VesselFrames,
 )
 from seatwin.recording.manifest import MANIFEST_NAME, MANIFEST_VERSION, write_manifest
 from seatwin.recording.pointcloud import RADAR_LAYOUT, VLP16_LAYOUT, Layout
 from seatwin.recording.storage import BagStorage, bag_path, open_storage
+from seatwin.recording.tf_tree import vessel_transforms
 
 F = TypeVar("F", bound=Callable[..., Any])
 
 
 def _timed(method: F) -> F:
-    """Add the time spent in an outermost public call to ``self.timing["total_s"]``."""
+    """Add the time spent in an outermost public call to ``self.timing["total_s"]`` (less ``on_write``'s)."""
 
     @functools.wraps(method)
     def wrapper(self: RecordingWriter, *args: Any, **kwargs: Any) -> Any:
         if self._depth:
             return method(self, *args, **kwargs)
         self._depth = 1
-        t0 = _time.perf_counter()
+        t0, live0 = _time.perf_counter(), self.timing["live_s"]
         try:
             return method(self, *args, **kwargs)
         finally:
             self._depth = 0
-            self.timing["total_s"] += _time.perf_counter() - t0
+            self.timing["total_s"] += _time.perf_counter() - t0 - (self.timing["live_s"] - live0)
 
     return wrapper  # type: ignore[return-value]
 
@@ -86,7 +88,8 @@ class RecordingWriter:
 
     ``scenario_file`` is copied into ``run_dir`` (a file already there is just named in the
     manifest); ``sensors`` and ``metadata`` go into the manifest as given (JSON-serialisable).
-    ``ros_distro`` picks a rosbag2 bag's metadata version (:data:`~seatwin.defaults.ROS_DISTROS`).
+    ``ros_distro`` picks a rosbag2 bag's metadata version (:data:`~seatwin.defaults.ROS_DISTROS`);
+    ``on_write`` sees every message written (:attr:`on_write`).
     """
 
     def __init__(
@@ -106,8 +109,12 @@ class RecordingWriter:
         row_step_zero: bool = False,
         fsync: bool = False,
         ros_distro: str = DEFAULT_ROS_DISTRO,
+        on_write: Callable[[str, str, int, bytes | memoryview], None] | None = None,
     ) -> None:
         self.format = check_format(fmt)
+        self.on_write = on_write
+        """Called with (topic, type, log time ns, serialised bytes) of every message once it is in the bag (a live
+        view: :class:`~seatwin.recording.live.LiveServer`)."""
         ros_distro = check_ros_distro(ros_distro)
         self.run_dir = Path(run_dir)
         self.topics = topics or TopicConfig()
@@ -123,7 +130,7 @@ class RecordingWriter:
         self.counts: dict[str, int] = {}
         self.types: dict[str, str] = {}
         self.vessels: dict[str, str] = {}
-        self._vessel_slots: dict[tuple[str, bool], tuple[str, tuple[tuple[str, str], ...]]] = {}
+        self._vessel_slots: dict[tuple[str, bool], tuple[VesselFrames, tuple[tuple[str, str], ...]]] = {}
         self.notes: list[str] = []
         self._conns: dict[str, Any] = {}
         self._t0: float | None = None
@@ -136,9 +143,9 @@ class RecordingWriter:
         self._gt = GroundTruthEncoder(self.format)
         self._clouds = PointCloudEncoder(self.format, row_step_zero)
         self.bag = bag_path(self.run_dir, self.format)
-        self.timing = {"total_s": 0.0, "serialize_s": 0.0, "write_s": 0.0}
+        self.timing = {"total_s": 0.0, "serialize_s": 0.0, "write_s": 0.0, "live_s": 0.0}
         """Seconds spent in this writer's calls (``total_s``; recording_share = total_s / wall time),
-        of which serialising and handing bytes to the bag storage."""
+        of which serialising and handing bytes to the bag storage; ``live_s``: in ``on_write`` (not in the others)."""
         self._depth = 0
         self._frame_depth = 0
         self._frame_block = _FrameBlock(self._begin_frame, self._end_frame)
@@ -229,6 +236,15 @@ class RecordingWriter:
             counts = self.counts
             for topic, _, _ in items:
                 counts[topic] += 1
+            if self.on_write is not None:
+                t_live = _time.perf_counter()
+                try:
+                    for topic, msgtype, data in items:
+                        self.on_write(topic, msgtype, stamp, data)
+                finally:
+                    live = _time.perf_counter() - t_live
+                    self.timing["live_s"] += live
+                    t0 += live  # not the bag's time
             if self._t0 is None or t < self._t0:
                 self._t0 = t
             if self._t1 is None or t > self._t1:
@@ -400,7 +416,7 @@ class RecordingWriter:
 
     @_timed
     def write_static_transforms(self, t: float, transforms: Sequence[M.StaticTransform] = ()) -> None:
-        """Sensor mounts (and, the first time, the ENU display frame above the NED world frame) on /tf_static."""
+        """Sensor mounts (and, the first time, ``world_ned`` below the ENU ``map`` frame) on /tf_static."""
         items = [(s.parent, s.child, s.translation, s.rotation) for s in transforms]
         if not self._static_written and self.topics.display_frame:
             items.insert(0, (self.topics.display_frame, self.topics.world_frame, (0.0, 0.0, 0.0), ENU_NED_ROTATION))
@@ -414,28 +430,33 @@ class RecordingWriter:
 
     @_timed
     def write_ground_truth(self, t: float, vessels: Sequence[M.VesselPose]) -> None:
-        """Ground truth of every vessel at ``t``: PoseStamped + Odometry each, NavSatFix of the ownship, one /tf.
+        """Ground truth of every vessel at ``t``: PoseStamped + Odometry each (``world_ned``, FRD body), NavSatFix
+        of the ownship (its ``gnss`` frame), one /tf of every FLU ``base_link`` in its ``odom`` (REP-105); a
+        vessel's fixed frames go on /tf_static when it first appears (:func:`~seatwin.recording.tf_tree.vessel_transforms`).
 
         Serialised directly (:mod:`seatwin.recording.fast_cdr`, byte-identical to the typestore path)."""
         if not self._static_written:
             self.write_static_transforms(t)
         t0 = _time.perf_counter()
-        entries, topics = [], []
+        entries, topics, new = [], [], []
         for v in vessels:
             fix = v.ownship and (v.llh is not None or self.origin is not None)
             slot = self._vessel_slots.get((v.name, fix))
             if slot is None:
                 slot = self._vessel_slot(v, fix)
-            entries.append((v, slot[0], fix))
+                new += vessel_transforms(self.topics, v.name, gnss=fix)
+            entries.append((v, slot[0]))
             topics += slot[1]
+        if new:  # a vessel's fixed frames (odom, base_link_frd, gnss) on /tf_static, before its first /tf
+            self.write_static_transforms(t, new)
         if entries:
             topics.append((self.topics.tf, TF_MESSAGE))
         msgs = self._gt.step(t, self.topics.world_frame, entries, self.origin)
         self.timing["serialize_s"] += _time.perf_counter() - t0
         self._write_batch(t, [(topic, msgtype, data) for (topic, msgtype), data in zip(topics, msgs)])
 
-    def _vessel_slot(self, v: M.VesselPose, fix: bool) -> tuple[str, tuple[tuple[str, str], ...]]:
-        """(body frame, (topic, type) of its pose, odometry and, with ``fix``, NavSatFix) of a vessel seen
+    def _vessel_slot(self, v: M.VesselPose, fix: bool) -> tuple[VesselFrames, tuple[tuple[str, str], ...]]:
+        """(frame ids, (topic, type) of its pose, odometry and, with ``fix``, NavSatFix) of a vessel seen
         for the first time (in this role); its role noted."""
         tp = self.topics
         self.vessels[v.name] = "ownship" if v.ownship else "target"
@@ -443,7 +464,9 @@ class RecordingWriter:
             self.notes.append("no geodetic origin given: the ownship's NavSatFix was not recorded")
         kinds = [("pose", POSE_STAMPED), ("odom", ODOMETRY)] + ([("fix", NAV_SAT_FIX)] if fix else [])
         topics = tuple((tp.topic(kind, vessel=v.name), msgtype) for kind, msgtype in kinds)
-        slot = self._vessel_slots[(v.name, fix)] = (tp.body(v.name), topics)
+        gnss = tp.frame("gnss_frame", v.name) if fix else None
+        frames = (tp.body(v.name), gnss, tp.frame("odom_frame", v.name), tp.frame("base_frame", v.name))
+        slot = self._vessel_slots[(v.name, fix)] = (frames, topics)
         return slot
 
     # ------------------------------------------------------------------ manifest and closing
@@ -521,7 +544,7 @@ def open_recording(run_dir: str | os.PathLike[str], fmt: str = "mcap", **kwargs:
 
 
 ENU_NED_ROTATION = (0.7071067811865475, 0.7071067811865475, 0.0, 0.0)
-"""The rotation of ``world_ned`` in the ENU display frame: ``quaternion_from_matrix(R_ENU_NED)`` (tested),
+"""The rotation of ``world_ned`` in the ENU ``map`` frame: ``quaternion_from_matrix(R_ENU_NED)`` (tested),
 written out so that the first recorded step does not wait for scipy to load."""
 
 

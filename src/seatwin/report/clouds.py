@@ -26,7 +26,7 @@ class CloudSnapshot:
 def cloud_at(path: str | os.PathLike[str], t: float, sensor: str = "lidar") -> CloudSnapshot:
     """The ``sensor`` (lidar or radar) point cloud of a recording whose stamp is nearest ``t``, in world NED."""
     from seatwin.evaluation.truth import recording_truth
-    from seatwin.perception.frames import Mount, sensor_pose
+    from seatwin.perception.frames import recording_mounts, sensor_pose
     from seatwin.perception.from_recording import OwnshipTrajectory
     from seatwin.recording import open_bag
 
@@ -52,7 +52,7 @@ def cloud_at(path: str | os.PathLike[str], t: float, sensor: str = "lidar") -> C
         if best.frame_id == rec.topic_config.world_frame or best.frame_id.endswith("_ned"):
             world = xyz[:, :2]
         else:
-            mounts = {st.child: Mount.from_quaternion(st.translation, st.rotation) for st in rec.static_transforms()}
+            mounts = recording_mounts(rec.static_transforms())
             if best.frame_id not in mounts:
                 raise InputError(path, f"no /tf_static mount for sensor frame {best.frame_id!r}; mounts: {sorted(mounts)}")
             world = sensor_pose(n, e, h, mounts[best.frame_id], d).to_world(xyz)[:, :2]

@@ -8,7 +8,8 @@ confidence as vision_msgs means it) and the same boxes as ``/camera/<name>/annot
 (``foxglove_msgs/ImageAnnotations``, which Foxglove's Image panel draws; each box's ``metadata`` holds
 ``instance``, ``class``, ``visible_fraction`` and ``truncation``, for which vision_msgs has no field, and
 its text says them).
-Frame ids are the cameras' optical frames, mounted on the ownship's body frame on /tf_static.
+Frame ids are the cameras' optical frames in the ownship's namespace (``<ownship>/camera_<name>_optical_frame``),
+mounted on its ``base_link`` on /tf_static.
 """
 
 from __future__ import annotations
@@ -24,7 +25,8 @@ from numpy.typing import NDArray
 
 from seatwin.recording import RecordingWriter, StaticTransform, TopicConfig
 from seatwin.recording.foxglove import LabelAnnotation, image_annotations
-from seatwin.recording.messages import Box2D, quaternion_from_matrix
+from seatwin.recording.messages import Box2D
+from seatwin.recording.tf_tree import sensor_mount
 from seatwin.sensors.camera.config import CameraConfig
 from seatwin.sensors.camera.intrinsics import source_pixels
 from seatwin.sensors.camera.labels import BoxLabel, ground_truth_boxes
@@ -124,8 +126,9 @@ class CameraSensor:
 
     def static_transforms(self, topics: TopicConfig) -> list[StaticTransform]:
         return [
-            StaticTransform(topics.body(self.ownship), m.frame_id, m.translation, quaternion_from_matrix(m.rotation))
+            s
             for m in self.mounts
+            for s in sensor_mount(topics, self.ownship, topics.sensor(self.ownship, m.frame_id), m.translation, m.rotation)
         ]
 
     def parameters(self) -> dict[str, Any]:
@@ -180,9 +183,10 @@ class CameraSensor:
         info = self.info
         for img, m in zip(data, self.mounts, strict=True):
             image_topic, info_topic, labels_topic = camera_topics(writer.topics, img.name)
-            writer.write_image(image_topic, m.frame_id, t, img.bgr)
-            writer.write_camera_info(info_topic, m.frame_id, t, info.width, info.height, info.k, info.d, info.r, info.p)
+            frame_id = writer.topics.sensor(self.ownship, m.frame_id)
+            writer.write_image(image_topic, frame_id, t, img.bgr)
+            writer.write_camera_info(info_topic, frame_id, t, info.width, info.height, info.k, info.d, info.r, info.p)
             if self.config.labels:
-                writer.write_labels(labels_topic, m.frame_id, t, label_boxes(img.labels))
+                writer.write_labels(labels_topic, frame_id, t, label_boxes(img.labels))
                 writer.write(annotations_topic(labels_topic), t, image_annotations(writer.store, t, annotations(img.labels)))
         self.timing.encode_s += _time.perf_counter() - t0

@@ -15,26 +15,29 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seatwin.errors import ParameterError
-from seatwin.recording import RecordingWriter, StaticTransform, TopicConfig, mount_rotation
+from seatwin.geo import mount_matrix
+from seatwin.recording import RecordingWriter, StaticTransform, TopicConfig
+from seatwin.recording.tf_tree import sensor_mount
 from seatwin.sensors.radar.config import RadarConfig
 from seatwin.sensors.radar.model import RadarModel, RadarScan
 from seatwin.sim.timing import TIME_EPS_S, periodic_times
 
 
-def radar_mount(config: RadarConfig, ownship: str, sensor: str, topics: TopicConfig) -> StaticTransform:
-    """The /tf_static mount of the radar frame on the ownship's body (FRD) frame."""
-    return StaticTransform(
-        topics.body(ownship), sensor, (config.mount_x_m, config.mount_y_m, -config.antenna_height_m), mount_rotation("flu")
-    )
+def radar_mount(config: RadarConfig, ownship: str, sensor: str, topics: TopicConfig) -> list[StaticTransform]:
+    """The /tf_static mount of the radar frame (``{ownship}/{sensor}``, FLU at the antenna) on the ownship's ``base_link``."""
+    translation = (config.mount_x_m, config.mount_y_m, -config.antenna_height_m)
+    return sensor_mount(topics, ownship, topics.sensor(ownship, sensor), translation, mount_matrix("flu"))
 
 
-def write_scan(writer: RecordingWriter, scan: RadarScan, config: RadarConfig, sensor: str = "radar") -> None:
-    """Write one scan's plots on ``writer``'s radar topic for ``sensor`` in the radar frame."""
+def write_scan(
+    writer: RecordingWriter, scan: RadarScan, config: RadarConfig, sensor: str = "radar", carrier: str | None = None
+) -> None:
+    """Write one scan's plots on ``writer``'s radar topic for ``sensor`` in the radar frame (of ``carrier``)."""
     x = scan.range_m * np.cos(scan.azimuth)
     y = -scan.range_m * np.sin(scan.azimuth)
     writer.write_radar(
         writer.topics.topic("radar", sensor=sensor),
-        sensor,
+        writer.topics.sensor(carrier, sensor),
         scan.time,
         x,
         y,
@@ -86,7 +89,7 @@ class RadarSensor:
         return self.times[(rel >= -TIME_EPS_S) & (rel < float(t1) - float(t0) - TIME_EPS_S)]
 
     def static_transforms(self, topics: TopicConfig) -> list[StaticTransform]:
-        return [radar_mount(self.model.config, self.ownship, self.name, topics)]
+        return radar_mount(self.model.config, self.ownship, self.name, topics)
 
     def parameters(self) -> dict[str, Any]:
         return {
@@ -106,4 +109,4 @@ class RadarSensor:
         return scan_scene(self.model, self.scene, self.ownship, frame, t, with_spokes=self.with_spokes)
 
     def record(self, writer: RecordingWriter, t: float, data: RadarScan) -> None:
-        write_scan(writer, data, self.model.config, sensor=self.name)
+        write_scan(writer, data, self.model.config, sensor=self.name, carrier=self.ownship)

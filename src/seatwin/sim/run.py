@@ -115,6 +115,7 @@ def simulate_scenario(
     duration: float | None = None,
     progress: bool | Callable[[float, float], None] = True,
     on_frame: Callable[[SimSensor, float, int, Any], None] | None = None,
+    on_write: Callable[[str, str, int, bytes | memoryview], None] | None = None,
     overwrite: bool = False,
     **changes: Any,
 ) -> SimulationResult:
@@ -122,7 +123,8 @@ def simulate_scenario(
 
     ``settings`` (default :class:`SimulationSettings`), with ``changes`` to its fields
     (``lidar_mode="depthbuffer"``, ``ray_drop=0.5``…); ``start`` POSIX seconds (default: the
-    scenario's start), ``duration`` seconds (default: to its end); ``on_frame`` as in :func:`simulate`.
+    scenario's start), ``duration`` seconds (default: to its end); ``on_frame`` as in :func:`simulate`;
+    ``on_write`` sees every message recorded (:attr:`~seatwin.recording.RecordingWriter.on_write`: a live view).
     ``run_dir`` must be new or empty; with ``overwrite`` an earlier run there is replaced once everything
     is validated (:func:`~seatwin.recording.manifest.check_new_run`: a user's other files stay).
     """
@@ -156,6 +158,7 @@ def simulate_scenario(
         progress=progress,
         on_frame=on_frame,
         writer_kwargs={
+            "on_write": on_write,
             "ros_distro": settings.ros_distro,
             "origin": scenario.origin,
             "seed": scenario.seed,

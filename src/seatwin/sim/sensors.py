@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seatwin.recording import RecordingWriter, StaticTransform, TopicConfig, VesselPose
-from seatwin.recording.messages import quaternion_from_matrix
+from seatwin.recording.tf_tree import sensor_mount
 from seatwin.scenario import Scenario
 from seatwin.sensors.lidar import Lidar
 from seatwin.sensors.lidar_config import LidarMount
@@ -135,14 +135,14 @@ class LidarSensor(Periodic):
         self.carrier = carrier if carrier is not None else lidar.platform
 
     def static_transforms(self, topics: TopicConfig) -> list[StaticTransform]:
+        """The mount on the carrier's ``base_link``; the roll (the thesis's 180°: upside down) as its own
+        transform below ``{carrier}/lidar_upright`` (:func:`~seatwin.recording.tf_tree.sensor_mount`)."""
         if self.carrier is None:
             return []
         m = self.recorded_mount
-        return [
-            StaticTransform(
-                topics.body(self.carrier), self.name, (float(m.x), float(m.y), float(m.z)), quaternion_from_matrix(m.rotation())
-            )
-        ]
+        return sensor_mount(
+            topics, self.carrier, topics.sensor(self.carrier, self.name), m.translation, m.rotation(), math.radians(m.roll_deg)
+        )
 
     def parameters(self) -> dict[str, Any]:
         cfg = self.lidar.config.model_dump()
@@ -164,6 +164,6 @@ class LidarSensor(Periodic):
 
     def record(self, writer: RecordingWriter, t: float, data: Any) -> None:
         s = data
-        writer.write_sweep(
-            writer.topics.topic("lidar", sensor=self.name), self.name, t, s.x, s.y, s.z, s.intensity, s.ring, s.time
-        )
+        tp = writer.topics
+        frame = tp.sensor(self.carrier, self.name)
+        writer.write_sweep(tp.topic("lidar", sensor=self.name), frame, t, s.x, s.y, s.z, s.intensity, s.ring, s.time)

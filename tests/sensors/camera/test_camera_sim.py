@@ -41,9 +41,9 @@ def test_bag_has_the_three_cameras_at_5_hz(run: Path) -> None:
         info = next(rec.messages("/camera/front/camera_info")).msg
         assert info.distortion_model == "plumb_bob" and len(info.d) == 5
         assert info.k[0] == pytest.approx(352.013, abs=1e-3) and list(info.r) == [1, 0, 0, 0, 1, 0, 0, 0, 1]
-        assert img.header.frame_id == info.header.frame_id == "camera_front_optical_frame"
+        assert img.header.frame_id == info.header.frame_id == "milliAmpere/camera_front_optical_frame"
         tf = {s.child: s for s in rec.static_transforms()}
-        assert {"camera_left_optical_frame", "camera_front_optical_frame", "camera_right_optical_frame"} <= set(tf)
+        assert {f"milliAmpere/camera_{c}_optical_frame" for c in ("left", "front", "right")} <= set(tf)
         labels = [m.msg for m in rec.messages("/camera/right/labels")]
         dets = [d for arr in labels for d in arr.detections]
         moored = {m.name for m in DEFAULT_LAYOUT.moored_boats}
