@@ -89,18 +89,18 @@ def _noop_rate(start: float, steps: list, tmp: Path | None = None) -> float:
     this process, or in another one when ``tmp`` is given."""
     import grpc
 
-    from seatwin.api.proto import gemini_osp_pb2, gemini_osp_pb2_grpc
+    from seatwin.api.proto import simulation_pb2, simulation_pb2_grpc
     from seatwin.api.server import SERVER_OPTIONS, bind
 
-    class Noop(gemini_osp_pb2_grpc.SimulationServicer):
+    class Noop(simulation_pb2_grpc.SimulationServicer):
         def DoStep(self, request: object, context: object) -> object:  # noqa: N802
-            return gemini_osp_pb2.StepResponse(success=True)
+            return simulation_pb2.StepResponse(success=True)
 
         def SetStartTime(self, request: object, context: object) -> object:  # noqa: N802
-            return gemini_osp_pb2.SetStartTimeResponse(success=True)
+            return simulation_pb2.SetStartTimeResponse(success=True)
 
     server = grpc.server(futures.ThreadPoolExecutor(max_workers=1), options=SERVER_OPTIONS)
-    gemini_osp_pb2_grpc.add_SimulationServicer_to_server(Noop(), server)
+    simulation_pb2_grpc.add_SimulationServicer_to_server(Noop(), server)
     port = bind(server, "127.0.0.1", 0)
     server.start()
     try:

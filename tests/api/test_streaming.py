@@ -9,7 +9,7 @@ import grpc
 import numpy as np
 import pytest
 
-from seatwin.api.proto import navigation_pb2, navigation_pb2_grpc, sensorstreaming_pb2, sensorstreaming_pb2_grpc
+from seatwin.api.proto import navigation_pb2, navigation_pb2_grpc, sensor_streaming_pb2, sensor_streaming_pb2_grpc
 from seatwin.api.streaming import (
     SensorStreamer,
     heading_of_quaternion,
@@ -78,9 +78,9 @@ def test_simulate_streams_into_record_stream(tmp_path):
             vesselName="milliAmpere",
         )
         assert nav.SendNavigationMessage(msg).success
-        bad = sensorstreaming_pb2.RadarStreamingRequest(numSpokes=4, numSamples=4, radarSpokes=b"123")
+        bad = sensor_streaming_pb2.RadarStreamingRequest(numSpokes=4, numSamples=4, radarSpokes=b"123")
         with pytest.raises(grpc.RpcError) as e:
-            sensorstreaming_pb2_grpc.SensorStreamingStub(channel).StreamRadarSensor(bad)
+            sensor_streaming_pb2_grpc.SensorStreamingStub(channel).StreamRadarSensor(bad)
         assert e.value.code() == grpc.StatusCode.INVALID_ARGUMENT
         channel.close()
     finally:

@@ -32,7 +32,7 @@ from typing import Any
 import grpc
 
 from seatwin.api.lockstep import LockstepSettings, LockstepSimulation
-from seatwin.api.proto import gemini_osp_pb2, gemini_osp_pb2_grpc
+from seatwin.api.proto import simulation_pb2, simulation_pb2_grpc
 from seatwin.errors import InputError, ParameterError
 from seatwin.recording import RecordingError
 from seatwin.sim.loop import SimulationResult, StepInterrupted
@@ -84,14 +84,14 @@ def server_options(
     ]
 
 
-_STEP_OK = gemini_osp_pb2.StepResponse(success=True)
+_STEP_OK = simulation_pb2.StepResponse(success=True)
 
 
 def _message(exc: InputError) -> str:
     return exc.render(exc.param) if isinstance(exc, ParameterError) else str(exc)
 
 
-class SimulationServicer(gemini_osp_pb2_grpc.SimulationServicer):
+class SimulationServicer(simulation_pb2_grpc.SimulationServicer):
     """``DoStep``/``SetStartTime`` onto a :class:`LockstepSimulation`: one call at a time (``lock``), each
     run on the simulation's thread (``worker``); refused once ``interrupt`` is set."""
 
@@ -141,7 +141,7 @@ class SimulationServicer(gemini_osp_pb2_grpc.SimulationServicer):
 
     def SetStartTime(self, request: Any, context: grpc.ServicerContext) -> Any:  # noqa: N802 - Gemini's name
         self._call(lambda: self.sim.set_start_time(request.time), context)
-        return gemini_osp_pb2.SetStartTimeResponse(success=True)
+        return simulation_pb2.SetStartTimeResponse(success=True)
 
 
 def check_port(port: int) -> None:
@@ -233,7 +233,7 @@ def serve(
         maximum_concurrent_rpcs=4 * int(workers),
     )
     servicer = SimulationServicer(sim, worker, interrupt)
-    gemini_osp_pb2_grpc.add_SimulationServicer_to_server(servicer, server)
+    simulation_pb2_grpc.add_SimulationServicer_to_server(servicer, server)
     try:
         bound = bind(server, host, port)
     except ParameterError:

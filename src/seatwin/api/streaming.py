@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from seatwin.api.proto import navigation_pb2, navigation_pb2_grpc, sensorstreaming_pb2, sensorstreaming_pb2_grpc
+from seatwin.api.proto import navigation_pb2, navigation_pb2_grpc, sensor_streaming_pb2, sensor_streaming_pb2_grpc
 from seatwin.errors import InputError, ParameterError
 from seatwin.recording.pointcloud import FLOAT32, FLOAT64, UINT32, VLP16_LAYOUT, Field, Layout, pack
 
@@ -59,10 +59,10 @@ def lidar_request(frame_id: str, t: float, sweep: Any) -> Any:
     data = pack(VLP16_LAYOUT, x=sweep.x, y=sweep.y, z=sweep.z, intensity=sweep.intensity, ring=sweep.ring, time=sweep.time)
     n = len(data) // VLP16_LAYOUT.point_step
     fields = [
-        sensorstreaming_pb2.PointField(name=f.name, offset=f.offset, datatype=f.datatype, count=f.count, **_POINTFIELD_CONSTANTS)
+        sensor_streaming_pb2.PointField(name=f.name, offset=f.offset, datatype=f.datatype, count=f.count, **_POINTFIELD_CONSTANTS)
         for f in VLP16_LAYOUT.fields
     ]
-    return sensorstreaming_pb2.LidarStreamingRequest(
+    return sensor_streaming_pb2.LidarStreamingRequest(
         timeInSeconds=float(t),
         height=1,
         width=n,
@@ -79,7 +79,7 @@ def lidar_request(frame_id: str, t: float, sweep: Any) -> Any:
 def camera_request(frame_id: str, t: float, bgr: np.ndarray) -> Any:
     """A ``CameraStreamingRequest`` of an H×W×3 bgr8 image, sent as rgb8 (3 bytes a pixel, rows top down)."""
     rgb = np.ascontiguousarray(np.asarray(bgr, np.uint8)[:, :, ::-1])
-    return sensorstreaming_pb2.CameraStreamingRequest(
+    return sensor_streaming_pb2.CameraStreamingRequest(
         data=rgb.tobytes(), timeStamp=float(t), width=rgb.shape[1], height=rgb.shape[0], frame_id=frame_id
     )
 
@@ -87,7 +87,7 @@ def camera_request(frame_id: str, t: float, bgr: np.ndarray) -> Any:
 def radar_request(spokes: Any) -> Any:
     """A ``RadarStreamingRequest`` of one rotation's spokes (:class:`seatwin.sensors.radar.spokes.RadarSpokes`)."""
     d = spokes.to_request_dict()
-    return sensorstreaming_pb2.RadarStreamingRequest(
+    return sensor_streaming_pb2.RadarStreamingRequest(
         rangeIncrement=d["range_increment"],
         rangeStart=d["range_start"],
         numSamples=d["num_samples"],
@@ -113,7 +113,7 @@ class SensorStreamer:
         self.address = address
         self._grpc = grpc
         self.channel = grpc.insecure_channel(address, options=GRPC_OPTIONS)
-        self.stub = sensorstreaming_pb2_grpc.SensorStreamingStub(self.channel)
+        self.stub = sensor_streaming_pb2_grpc.SensorStreamingStub(self.channel)
         self.timeout_s = timeout_s
         self.sent: dict[str, int] = {"lidar": 0, "camera": 0, "radar": 0}
 
@@ -240,7 +240,7 @@ class StreamRecorder:
         self.counts["navigation"] += 1
 
 
-class _Servicer(sensorstreaming_pb2_grpc.SensorStreamingServicer, navigation_pb2_grpc.NavigationServicer):
+class _Servicer(sensor_streaming_pb2_grpc.SensorStreamingServicer, navigation_pb2_grpc.NavigationServicer):
     def __init__(self, recorder: StreamRecorder):
         self.rec = recorder
 
@@ -259,13 +259,13 @@ class _Servicer(sensorstreaming_pb2_grpc.SensorStreamingServicer, navigation_pb2
         return True
 
     def StreamLidarSensor(self, request: Any, context: Any) -> Any:  # noqa: N802 - Gemini's name
-        return sensorstreaming_pb2.LidarStreamingResponse(success=self._call(self.rec.lidar, request, context))
+        return sensor_streaming_pb2.LidarStreamingResponse(success=self._call(self.rec.lidar, request, context))
 
     def StreamCameraSensor(self, request: Any, context: Any) -> Any:  # noqa: N802
-        return sensorstreaming_pb2.CameraStreamingResponse(success=self._call(self.rec.camera, request, context))
+        return sensor_streaming_pb2.CameraStreamingResponse(success=self._call(self.rec.camera, request, context))
 
     def StreamRadarSensor(self, request: Any, context: Any) -> Any:  # noqa: N802
-        return sensorstreaming_pb2.RadarStreamingResponse(success=self._call(self.rec.radar, request, context))
+        return sensor_streaming_pb2.RadarStreamingResponse(success=self._call(self.rec.radar, request, context))
 
     def SendNavigationMessage(self, request: Any, context: Any) -> Any:  # noqa: N802
         return navigation_pb2.NavigationResponse(success=self._call(self.rec.navigation, request, context))
@@ -315,7 +315,7 @@ def record_stream(
     recorder = StreamRecorder(writer, ownship)
     server = grpc.server(futures.ThreadPoolExecutor(max_workers=8), options=server_options(STREAM_MAX_MESSAGE_BYTES))
     servicer = _Servicer(recorder)
-    sensorstreaming_pb2_grpc.add_SensorStreamingServicer_to_server(servicer, server)
+    sensor_streaming_pb2_grpc.add_SensorStreamingServicer_to_server(servicer, server)
     navigation_pb2_grpc.add_NavigationServicer_to_server(servicer, server)
     try:
         bound = bind(server, host, port)
