@@ -12,6 +12,7 @@ import pytest
 from seatwin.api.proto import navigation_pb2, navigation_pb2_grpc, sensor_streaming_pb2, sensor_streaming_pb2_grpc
 from seatwin.api.streaming import (
     SensorStreamer,
+    camera_request,
     heading_of_quaternion,
     lidar_request,
     radar_request,
@@ -106,7 +107,8 @@ def test_simulate_streams_into_record_stream(tmp_path):
 
 
 def test_camera_images_and_serve_stream(tmp_path):
-    """A camera frame (rgb8 on the wire) lands as the same pixels; ``serve``'s on_frame streams too."""
+    """A camera frame goes on the wire in Gemini's order (RGB, rows bottom up) and is recorded as Gemini's ROS
+    adapter publishes it (bgr8, rows top down): the simulated pixels exactly; ``serve``'s on_frame streams too."""
     from seatwin.api.client import SimulationClient
     from seatwin.api.server import serve
 
@@ -130,8 +132,29 @@ def test_camera_images_and_serve_stream(tmp_path):
     assert counts["camera"] == 1 and streamer.sent == {"lidar": 0, "camera": 1, "radar": 0}
     with open_bag(tmp_path / "rec") as b:
         (img,) = list(b.images("/camera/front/image_raw"))
-        px = np.asarray(img.pixels).reshape(4, 6, 3)
-        assert (px[:, :, ::-1] == Img.bgr).all() or (px == Img.bgr).all()
+        assert img.encoding == "bgr8" and np.array_equal(np.asarray(img.pixels).reshape(4, 6, 3), Img.bgr)
+    wire = np.frombuffer(camera_request("camera/front", 0.0, Img.bgr).data, np.uint8).reshape(4, 6, 3)
+    assert np.array_equal(wire[0, 0], Img.bgr[3, 0, ::-1]) and np.array_equal(wire, Img.bgr[::-1, :, ::-1])
+
+
+def test_record_stream_refuses_an_image_of_the_wrong_size(tmp_path):
+    rec = record_stream(tmp_path / "rec", port=0)
+    channel = grpc.insecure_channel(rec.address)
+    try:
+        stub = sensor_streaming_pb2_grpc.SensorStreamingStub(channel)
+        for data in (b"\0" * (4 * 6 * 2), b""):
+            bad = sensor_streaming_pb2.CameraStreamingRequest(data=data, width=6, height=4, frame_id="camera/front")
+            with pytest.raises(grpc.RpcError) as e:
+                stub.StreamCameraSensor(bad)
+            assert e.value.code() == grpc.StatusCode.INVALID_ARGUMENT and "not a 6×4 image" in e.value.details()
+        mono = sensor_streaming_pb2.CameraStreamingRequest(data=bytes(range(24)), width=6, height=4, frame_id="camera/ir")
+        assert stub.StreamCameraSensor(mono).success
+    finally:
+        channel.close()
+        rec.stop()
+    with open_bag(tmp_path / "rec") as b:
+        (img,) = list(b.images("/camera/ir/image_raw"))
+    assert img.encoding == "mono8" and np.array_equal(np.asarray(img.pixels).reshape(4, 6), np.arange(24).reshape(4, 6)[::-1])
 
 
 def test_radar_spokes_keep_their_azimuths(tmp_path):

@@ -92,6 +92,13 @@ class LiveTracks:
             s[:, _HEADING, 0] = w
         self.n = k + 1
 
+    def last(self, vessel: int) -> tuple[float, float, float, float, float, float]:
+        """Vessel ``vessel`` at the last sample: north, east, heading (unwrapped), v_north, v_east, yaw rate
+        (one-sided differences; zero velocities with a single sample)."""
+        k = self.n - 1
+        n, e, h = self._s[vessel, :3, k].tolist()
+        return (n, e, h, *(self._s[vessel, 3:, k].tolist() if k else (0.0, 0.0, 0.0)))
+
     def state(self, t: ArrayLike) -> NDArray[np.float64]:
         """(vessels, 6, len(t)): north, east, heading (wrapped to [−π, π)), v_north, v_east, yaw rate at times
         ``t`` within the samples (needs two), interpolated as ``Trajectory.state_at``."""

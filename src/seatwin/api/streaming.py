@@ -3,7 +3,8 @@
 * :class:`SensorStreamer` — the client: its :meth:`~SensorStreamer.on_frame` is the loop's
   ``on_frame`` hook (``seatwin simulate --stream``, ``seatwin serve --stream``) and sends every lidar
   cloud as a ``LidarStreamingRequest`` (thesis Table 4.2 layout, one row of points, little endian),
-  every camera image as a ``CameraStreamingRequest`` (rgb8, frame ``camera/<name>``) and every radar
+  every camera image as a ``CameraStreamingRequest`` (Gemini's wire order: RGB, rows bottom up; frame
+  ``camera/<name>``) and every radar
   rotation's spokes as a ``RadarStreamingRequest``.
 * :func:`record_stream` — the server (``seatwin record-stream``): writes what arrives into a ROS bag
   through :class:`~seatwin.recording.RecordingWriter`, as a Gemini/Unity simulator's ROS-side
@@ -54,9 +55,27 @@ the spoke, and the rotation's ``rangeStart``, ``rangeIncrement``, ``minIntensity
 _POINTFIELD_CONSTANTS = {"INT8": 1, "UINT8": 2, "INT16": 3, "UINT16": 4, "INT32": 5, "UINT32": 6, "FLOAT32": 7, "FLOAT64": 8}
 
 
+def lidar_bytes(sweep: Any) -> bytes:
+    """One sweep's points (columns x, y, z, intensity, ring, time) in the Table 4.2 layout, little endian."""
+    data = pack(VLP16_LAYOUT, x=sweep.x, y=sweep.y, z=sweep.z, intensity=sweep.intensity, ring=sweep.ring, time=sweep.time)
+    return np.ascontiguousarray(data).tobytes()
+
+
+def camera_bytes(bgr: np.ndarray) -> bytes:
+    """An H×W×3 bgr8 image (rows top down) as Gemini puts a camera image on the wire: R, G, B bytes a pixel,
+    rows bottom to top (Unity's RGB24 GPU readback; Gemini's ROS adapter flips the rows and converts
+    RGB to BGR before publishing bgr8)."""
+    return np.ascontiguousarray(np.asarray(bgr, np.uint8)[::-1, :, ::-1]).tobytes()
+
+
+def image_from_wire(data: bytes, width: int, height: int) -> np.ndarray:
+    """:func:`camera_bytes` undone: the H×W×3 bgr8 image, rows top down (what Gemini's ROS adapter publishes)."""
+    return np.ascontiguousarray(np.frombuffer(data, np.uint8).reshape(height, width, 3)[::-1, :, ::-1])
+
+
 def lidar_request(frame_id: str, t: float, sweep: Any) -> Any:
     """A ``LidarStreamingRequest`` of one sweep (columns x, y, z, intensity, ring, time) in the Table 4.2 layout."""
-    data = pack(VLP16_LAYOUT, x=sweep.x, y=sweep.y, z=sweep.z, intensity=sweep.intensity, ring=sweep.ring, time=sweep.time)
+    data = lidar_bytes(sweep)
     n = len(data) // VLP16_LAYOUT.point_step
     fields = [
         sensor_streaming_pb2.PointField(name=f.name, offset=f.offset, datatype=f.datatype, count=f.count, **_POINTFIELD_CONSTANTS)
@@ -70,18 +89,17 @@ def lidar_request(frame_id: str, t: float, sweep: Any) -> Any:
         isBigEndian=False,
         point_step=VLP16_LAYOUT.point_step,
         row_step=VLP16_LAYOUT.point_step * n,
-        data=np.ascontiguousarray(data).tobytes(),
+        data=data,
         is_dense=True,
         frame_id=frame_id,
     )
 
 
 def camera_request(frame_id: str, t: float, bgr: np.ndarray) -> Any:
-    """A ``CameraStreamingRequest`` of an H×W×3 bgr8 image, sent as rgb8 (3 bytes a pixel, rows top down)."""
-    rgb = np.ascontiguousarray(np.asarray(bgr, np.uint8)[:, :, ::-1])
-    return sensor_streaming_pb2.CameraStreamingRequest(
-        data=rgb.tobytes(), timeStamp=float(t), width=rgb.shape[1], height=rgb.shape[0], frame_id=frame_id
-    )
+    """A ``CameraStreamingRequest`` of an H×W×3 bgr8 image, in Gemini's wire order (:func:`camera_bytes`)."""
+    h, w = np.shape(bgr)[:2]
+    data = camera_bytes(bgr)
+    return sensor_streaming_pb2.CameraStreamingRequest(data=data, timeStamp=float(t), width=w, height=h, frame_id=frame_id)
 
 
 def radar_request(spokes: Any) -> Any:
@@ -180,15 +198,17 @@ class StreamRecorder:
         self.counts["lidar"] += 1
 
     def camera(self, r: Any) -> None:
+        """Gemini's wire order (:func:`camera_bytes`: RGB, rows bottom up) recorded as its ROS adapter publishes
+        it: bgr8, rows top down; 1 byte a pixel: mono8, rows flipped the same way."""
         w, h = int(r.width), int(r.height)
-        if w <= 0 or h <= 0 or len(r.data) % (w * h):
-            raise InputError("CameraStreamingRequest", f"{len(r.data)} bytes are not a {w}×{h} image")
-        c = len(r.data) // (w * h)
-        enc = {1: "mono8", 3: "rgb8"}.get(c)
-        if enc is None:
-            raise InputError("CameraStreamingRequest", f"{c} bytes a pixel: expected 1 (mono8) or 3 (rgb8)")
+        if w <= 0 or h <= 0 or len(r.data) != 3 * w * h and len(r.data) != w * h:
+            expected = f"expected {3 * w * h} RGB or {w * h} mono"
+            raise InputError("CameraStreamingRequest", f"{len(r.data)} bytes are not a {w}×{h} image ({expected})")
         sensor = r.frame_id or "camera"
-        pixels = np.frombuffer(r.data, np.uint8).reshape(h, w, c)
+        if len(r.data) == w * h:
+            pixels, enc = np.ascontiguousarray(np.frombuffer(r.data, np.uint8).reshape(h, w)[::-1]), "mono8"
+        else:
+            pixels, enc = image_from_wire(r.data, w, h), "bgr8"
         self.writer.write_image(self.writer.topics.topic("camera", sensor=sensor), sensor, r.timeStamp, pixels, enc)
         self.counts["camera"] += 1
 

@@ -26,6 +26,16 @@ from seatwin.interrupts import deferred_interrupts, interrupts_raise
 from seatwin.sim.sensors import SimSensor
 
 
+class _NotRendered:
+    def __repr__(self) -> str:
+        return "NOT_RENDERED"
+
+
+NOT_RENDERED: Any = _NotRendered()
+"""What a sensor's ``capture`` returns for a frame it does not make (its rendering stopped, as Gemini's
+``SensorManagement.StopRendering``): the stepper moves past the frame without recording it."""
+
+
 class StepInterrupted(Exception):
     """:meth:`Stepper.advance_to` stopped between two frames because its ``interrupt`` event was set."""
 
@@ -118,6 +128,9 @@ class Stepper:
             t, i, k = heapq.heappop(events)
             sensor = self.sensors[i]
             data = sensor.capture(t, k)
+            if data is NOT_RENDERED:
+                self._next[i] = k + 1
+                continue
             with deferred_interrupts(), self.writer.frame():
                 sensor.record(self.writer, t, data)
                 self._next[i] = k + 1
