@@ -158,6 +158,9 @@ class LiveGroundTruth(GroundTruthSensor):
     def frame_times(self, t0: float, t1: float) -> NDArray[np.float64]:
         return Periodic.frame_times(self, t0, t1)
 
+    def frame_times_from(self, t0: float, t1: float, first: int) -> NDArray[np.float64]:
+        return Periodic.frame_times_from(self, t0, t1, first)
+
     def capture(self, t: float, frame: int) -> list[VesselPose]:
         rows = self.tracks.state(t)[:, :, 0].tolist()
         out = []

@@ -145,6 +145,11 @@ class _Due:
     def frame_times(self, t0: float, t1: float) -> NDArray[np.float64]:
         return self.sensor.frame_times(t0, min(t1, self.limit))
 
+    def frame_times_from(self, t0: float, t1: float, first: int) -> NDArray[np.float64]:
+        tail = getattr(self.sensor, "frame_times_from", None)
+        t1 = min(t1, self.limit)
+        return tail(t0, t1, first) if tail is not None else self.sensor.frame_times(t0, t1)[first:]
+
     def capture(self, t: float, frame: int) -> Any:
         off = self.off
         if off and (all(c in off for c in self.cameras) if self.cameras is not None else self.sensor.name in off):
