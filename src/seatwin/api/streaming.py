@@ -118,10 +118,33 @@ def radar_request(spokes: Any) -> Any:
     )
 
 
-class SensorStreamer:
-    """A ``SensorStreaming`` client for the loop's ``on_frame`` hook; counts what it sent."""
+CONNECT_TIMEOUT_S = 5.0
+"""How long :class:`SensorStreamer` waits for its server to answer before the run starts."""
 
-    def __init__(self, address: str, timeout_s: float = 30.0):
+
+def navigation_request(t: float, pose: Any) -> Any:
+    """A ``NavigationRequest`` of one vessel's ground truth (:class:`~seatwin.recording.VesselPose`): position
+    (north, east, down) [m] in the scenario's NED frame, orientation the heading as a rotation about z (down),
+    linear velocity (v_north, v_east, 0) [m/s] in that frame, angular velocity (0, 0, yaw rate) [rad/s] —
+    what :class:`StreamRecorder` reads back."""
+    half = 0.5 * float(pose.heading)
+    return navigation_pb2.NavigationRequest(
+        timeStamp=float(t),
+        position=navigation_pb2.Vec3(x=float(pose.north), y=float(pose.east), z=float(pose.down)),
+        orientation=navigation_pb2.Quaternion(x=0.0, y=0.0, z=math.sin(half), w=math.cos(half)),
+        linearVelocity=navigation_pb2.Vec3(x=float(pose.v_north), y=float(pose.v_east), z=0.0),
+        angularVelocity=navigation_pb2.Vec3(x=0.0, y=0.0, z=float(pose.yaw_rate)),
+        vesselName=str(pose.name),
+    )
+
+
+class SensorStreamer:
+    """A ``SensorStreaming`` + ``Navigation`` client for the loop's ``on_frame`` hook; counts what it sent.
+
+    It fails at once (:class:`ParameterError`, one line) when nothing answers at ``address`` within
+    ``connect_timeout_s``; a call then waits at most ``timeout_s`` for its answer."""
+
+    def __init__(self, address: str, timeout_s: float = 30.0, connect_timeout_s: float = CONNECT_TIMEOUT_S):
         import grpc
 
         from seatwin.api.server import GRPC_OPTIONS
@@ -131,9 +154,18 @@ class SensorStreamer:
         self.address = address
         self._grpc = grpc
         self.channel = grpc.insecure_channel(address, options=GRPC_OPTIONS)
+        try:
+            grpc.channel_ready_future(self.channel).result(timeout=connect_timeout_s)
+        except grpc.FutureTimeoutError:
+            self.channel.close()
+            raise ParameterError(
+                "stream",
+                f"nothing answers at {address} (waited {connect_timeout_s:g} s): is a SensorStreaming server running there?",
+            ) from None
         self.stub = sensor_streaming_pb2_grpc.SensorStreamingStub(self.channel)
+        self.navigation = navigation_pb2_grpc.NavigationStub(self.channel)
         self.timeout_s = timeout_s
-        self.sent: dict[str, int] = {"lidar": 0, "camera": 0, "radar": 0}
+        self.sent: dict[str, int] = {"lidar": 0, "camera": 0, "radar": 0, "navigation": 0}
 
     def _send(self, call: Callable[..., Any], request: Any, kind: str) -> None:
         try:
@@ -143,8 +175,14 @@ class SensorStreamer:
         self.sent[kind] += 1
 
     def on_frame(self, sensor: Any, t: float, frame: int, data: Any) -> None:
-        """The loop's hook: stream a lidar sweep or a radar rotation's spokes (ground truth is not streamed)."""
-        if hasattr(sensor, "lidar"):  # a LidarSensor
+        """The loop's hook: stream a lidar sweep, a rig's camera images, a radar rotation's spokes, or a ground-truth
+        frame as a ``NavigationRequest`` per vessel (so a bag recorded from the stream can be tracked)."""
+        from seatwin.recording import VesselPose
+
+        if isinstance(data, list) and data and isinstance(data[0], VesselPose):  # ground truth
+            for pose in data:
+                self._send(self.navigation.SendNavigationMessage, navigation_request(t, pose), "navigation")
+        elif hasattr(sensor, "lidar"):  # a LidarSensor
             self._send(self.stub.StreamLidarSensor, lidar_request(sensor.name, t, data), "lidar")
         elif isinstance(data, list) and data and hasattr(data[0], "bgr"):  # a CameraSensor's images
             for img in data:
@@ -171,14 +209,44 @@ def heading_of_quaternion(x: float, y: float, z: float, w: float) -> float:
     return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
 
 
+def thesis_mounts(ownship: str, topics: Any) -> dict[str, Any]:
+    """The mounts ``seatwin simulate`` records for its default sensors on ``ownship`` (the thesis's milliAmpere rig:
+    the lidar upside down at its measured height, the radar, each rig camera's optical frame), by frame id as the
+    sensors stream them (``lidar``, ``radar``, ``camera/<name>``). Gemini's streaming carries no mounts."""
+    from seatwin.recording import StaticTransform
+    from seatwin.recording.messages import quaternion_from_matrix
+    from seatwin.sensors.camera.config import CameraConfig
+    from seatwin.sensors.camera.rig import rig_mounts
+    from seatwin.sensors.lidar_config import MILLIAMPERE_LIDAR_MOUNT
+    from seatwin.sensors.radar.config import RadarConfig
+    from seatwin.sim.radar import radar_mount
+
+    body = topics.body(ownship)
+    m = MILLIAMPERE_LIDAR_MOUNT
+    out = {"lidar": StaticTransform(body, "lidar", (float(m.x), float(m.y), float(m.z)), quaternion_from_matrix(m.rotation()))}
+    out["radar"] = radar_mount(RadarConfig(), ownship, "radar", topics)
+    for cam in rig_mounts(CameraConfig()):
+        out[f"camera/{cam.name}"] = StaticTransform(
+            body, f"camera/{cam.name}", cam.translation, quaternion_from_matrix(cam.rotation)
+        )
+    return out
+
+
 @dataclass
 class StreamRecorder:
-    """Writes streamed sensor data and navigation messages into a recording (thread-safe)."""
+    """Writes streamed sensor data and navigation messages into a recording (thread-safe); the first frame of a
+    sensor whose frame id has an entry in ``mounts`` also writes that mount on /tf_static."""
 
     writer: Any
     ownship: str | None = None
     counts: dict[str, int] = field(default_factory=lambda: {"lidar": 0, "camera": 0, "radar": 0, "navigation": 0})
     lock: threading.Lock = field(default_factory=threading.Lock)
+    mounts: dict[str, Any] = field(default_factory=dict)
+
+    def _mount(self, frame_id: str, t: float) -> None:
+        mount = self.mounts.pop(frame_id, None)
+        if mount is not None:
+            self.writer.write_static_transforms(t, [mount])
 
     def lidar(self, r: Any) -> None:
         layout = _layout_of(r)
@@ -189,6 +257,7 @@ class StreamRecorder:
         if len(buf) < n * layout.point_step:
             raise InputError("LidarStreamingRequest", f"data has {len(buf)} bytes, {n} points need {n * layout.point_step}")
         sensor = r.frame_id or "lidar"
+        self._mount(sensor, r.timeInSeconds)
         topic = self.writer.topics.topic("lidar", sensor=sensor)
         if layout == VLP16_LAYOUT:
             p = np.frombuffer(r.data, dtype=layout.dtype, count=n)
@@ -205,6 +274,7 @@ class StreamRecorder:
             expected = f"expected {3 * w * h} RGB or {w * h} mono"
             raise InputError("CameraStreamingRequest", f"{len(r.data)} bytes are not a {w}×{h} image ({expected})")
         sensor = r.frame_id or "camera"
+        self._mount(sensor, r.timeStamp)
         if len(r.data) == w * h:
             pixels, enc = np.ascontiguousarray(np.frombuffer(r.data, np.uint8).reshape(h, w)[::-1]), "mono8"
         else:
@@ -222,6 +292,7 @@ class StreamRecorder:
         times = np.asarray(r.timeInSeconds, np.float64) if len(r.timeInSeconds) else np.zeros(ns)
         azimuth = np.asarray(r.azimuth, np.float32) if len(r.azimuth) else np.full(ns, np.nan, np.float32)
         t = float(times[0])
+        self._mount("radar", t)
         img = np.frombuffer(r.radarSpokes, np.uint8).reshape(ns, nr)
         self.writer.write_image(SPOKES_TOPIC, "radar", t, img, "mono8")
         spokes = pack(
@@ -316,9 +387,18 @@ class RecorderHandle:
 
 
 def record_stream(
-    run_dir: str | Path, *, port: int = 50052, host: str = "127.0.0.1", fmt: str = "mcap", ownship: str | None = "milliAmpere"
+    run_dir: str | Path,
+    *,
+    port: int = 50052,
+    host: str = "127.0.0.1",
+    fmt: str = "mcap",
+    ownship: str | None = "milliAmpere",
+    mounts: bool = True,
 ) -> RecorderHandle:
-    """Start a ``SensorStreaming`` + ``Navigation`` server recording into the new run directory ``run_dir``."""
+    """Start a ``SensorStreaming`` + ``Navigation`` server recording into the new run directory ``run_dir``.
+
+    ``mounts``: write the thesis rig's sensor mounts (:func:`thesis_mounts`) on /tf_static as each sensor first
+    streams, so the bag can be tracked with the ``NavigationRequest``s as ownship ground truth."""
     import grpc
 
     from seatwin.api.server import STREAM_MAX_MESSAGE_BYTES, bind, check_port, server_options
@@ -332,7 +412,7 @@ def record_stream(
         raise InputError(run_dir, "a recording exists here already; choose a new run directory")
     run_dir.mkdir(parents=True, exist_ok=True)
     writer = RecordingWriter(run_dir, fmt, origin=RAVNKLOA, metadata={"recorded_by": "seatwin record-stream"})
-    recorder = StreamRecorder(writer, ownship)
+    recorder = StreamRecorder(writer, ownship, mounts=thesis_mounts(ownship, writer.topics) if mounts and ownship else {})
     server = grpc.server(futures.ThreadPoolExecutor(max_workers=8), options=server_options(STREAM_MAX_MESSAGE_BYTES))
     servicer = _Servicer(recorder)
     sensor_streaming_pb2_grpc.add_SensorStreamingServicer_to_server(servicer, server)

@@ -78,7 +78,10 @@ def register(app: typer.Typer) -> None:
         progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar (lines on a pipe)."),
         quiet: bool = typer.Option(False, "--quiet", "-q", hidden=True, help="Old spelling of --no-progress."),
         stream: str | None = typer.Option(
-            None, "--stream", metavar="HOST:PORT", help="Also stream lidar clouds and radar spokes to a SensorStreaming server."
+            None,
+            "--stream",
+            metavar="HOST:PORT",
+            help="Also stream lidar clouds, camera images, radar spokes and navigation to a SensorStreaming server.",
         ),
         overwrite: bool = overwrite_option(),
     ) -> None:
