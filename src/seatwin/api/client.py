@@ -19,8 +19,8 @@ class SimulationClient:
     def __init__(self, address: str, timeout_s: float | None = 60.0):
         import grpc
 
+        from seatwin.api.channel import GRPC_OPTIONS
         from seatwin.api.proto import simulation_pb2, simulation_pb2_grpc
-        from seatwin.api.server import GRPC_OPTIONS
 
         self._pb = simulation_pb2
         self.channel = grpc.insecure_channel(address, options=GRPC_OPTIONS)

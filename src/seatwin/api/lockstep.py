@@ -221,6 +221,8 @@ class LockstepSimulation:
         self.dynamics: VesselDynamics = dynamics if dynamics is not None else LinearManoeuvring3DOF()
         """What a force-driven vessel follows (:mod:`seatwin.api.motion`)."""
         self.motions: list[VesselMotion] = [ScenarioReplay() for _ in vessels]
+        self._driven: list[int] = []
+        """Vessels whose motion is not the steps' poses (force-driven)."""
         self._first_forces: dict[int, tuple[float, float, float]] = {}
         """Forces applied before the first step: the vessel starts at rest at its first pose."""
         self.sensors = self._sensors()
@@ -353,6 +355,7 @@ class LockstepSimulation:
             motion = ForceDriven(self.dynamics, t, np.array([north, east, heading]), body_velocity(heading, vn, ve, r))
             motion.set_force(*force)
             self.motions[i] = motion
+            self._driven.append(i)
 
     def step(
         self, poses: Sequence[Sequence[float]], time: float, step_size: float = 0.0, interrupt: threading.Event | None = None
@@ -399,15 +402,17 @@ class LockstepSimulation:
                     f"after a step at {last - self.start!r} s",
                 )
         p[:, 2] = np.deg2rad(p[:, 2])
-        for i, force in self._first_forces.items():  # after every check: a refused step changes nothing
-            self.motions[i] = ForceDriven(self.dynamics, t, p[i])
-            self.motions[i].set_force(*force)  # type: ignore[attr-defined]
-        self._first_forces = {}
-        for i, motion in enumerate(self.motions):
-            p[i] = motion.pose(t, p[i])
+        if self._first_forces:  # after every check: a refused step changes nothing
+            for i, force in self._first_forces.items():
+                self.motions[i] = ForceDriven(self.dynamics, t, p[i])
+                self.motions[i].set_force(*force)  # type: ignore[attr-defined]
+                self._driven.append(i)
+            self._first_forces = {}
+        for i in self._driven:
+            p[i] = self.motions[i].pose(t, p[i])
         tracks.append(t, p[:, 0], p[:, 1], p[:, 2])
-        for motion in self.motions:
-            motion.commit(t)
+        for i in self._driven:
+            self.motions[i].commit(t)
         if self.stepper is None and rel >= 0:
             hook = self.on_frame
             on_frame = None if hook is None else (lambda d, t, k, data: hook(d.sensor, t, k, data))  # the sensor, not its _Due

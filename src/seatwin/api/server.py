@@ -34,6 +34,7 @@ from typing import Any
 
 import grpc
 
+from seatwin.api.channel import GRPC_OPTIONS, MAX_MESSAGE_BYTES  # noqa: F401 - GRPC_OPTIONS: re-exported
 from seatwin.api.lockstep import LockstepSettings, LockstepSimulation
 from seatwin.api.motion import VesselDynamics
 from seatwin.api.proto import (
@@ -59,9 +60,6 @@ from seatwin.errors import InputError, ParameterError
 from seatwin.recording import RecordingError
 from seatwin.sim.loop import SimulationResult, StepInterrupted
 
-MAX_MESSAGE_BYTES = 256 * 1024 * 1024
-"""Clients' message-size limit both ways (what they send is bounded by the server they talk to)."""
-
 STREAM_MAX_MESSAGE_BYTES = 64 * 1024 * 1024
 """What ``record-stream`` accepts: a 612×512 RGB image is 0.94 MB, a dense VLP-16 cloud (16 × 1800
 points × 24 bytes) 0.69 MB, a 4K RGB image 25 MB."""
@@ -81,11 +79,6 @@ a request body that never comes is given up after ``CONNECTION_AGE_S`` + this.""
 
 SERVER_WORKERS = 8
 """gRPC worker threads: calls waiting for their bodies (or for the lock) do not hold up the others."""
-
-GRPC_OPTIONS = [
-    ("grpc.max_receive_message_length", MAX_MESSAGE_BYTES),
-    ("grpc.max_send_message_length", MAX_MESSAGE_BYTES),
-]
 
 
 def server_options(

@@ -147,7 +147,7 @@ class SensorStreamer:
     def __init__(self, address: str, timeout_s: float = 30.0, connect_timeout_s: float = CONNECT_TIMEOUT_S):
         import grpc
 
-        from seatwin.api.server import GRPC_OPTIONS
+        from seatwin.api.channel import GRPC_OPTIONS
 
         if ":" not in address:
             raise ParameterError("stream", f"expected HOST:PORT, got {address!r}")

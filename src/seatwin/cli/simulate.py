@@ -91,15 +91,15 @@ def register(app: typer.Typer) -> None:
         /radar/detections (with --sensors lidar,radar), /camera/{left,front,right}/image_raw|camera_info|labels
         (camera: on by default), /ground_truth/<vessel>/pose|odom|fix, /tf, /tf_static.
         """
+        streamer = None
+        if stream:  # first: nothing listening there fails in seconds, before the simulator is imported
+            from seatwin.api.streaming import SensorStreamer
+
+            streamer = SensorStreamer(stream)
         from seatwin.cli.output import split_list
         from seatwin.cli.scenario import _date
         from seatwin.pipeline.simulate import simulate_run
 
-        streamer = None
-        if stream:
-            from seatwin.api.streaming import SensorStreamer
-
-            streamer = SensorStreamer(stream)
         result = simulate_run(
             scenario,
             out,

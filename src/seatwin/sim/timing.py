@@ -26,6 +26,8 @@ def periodic_times_from(t0: float, t1: float, rate_hz: float, phase_s: float, fi
     if not rate_hz > 0:
         raise ParameterError("rate_hz", f"a sensor needs a positive rate, got {rate_hz!r}")
     span = float(t1) - float(t0)
+    if phase_s >= 0 and not phase_s + int(first) / rate_hz < span - TIME_EPS_S:  # the usual lock-step case: none due
+        return np.empty(0)  # (the same arithmetic as below, on one element)
     dropped = 0  # leading frames of a negative phase, before t0: not frames
     if phase_s < 0:
         head = phase_s + np.arange(int(np.ceil(-phase_s * rate_hz)) + 2) / rate_hz
