@@ -237,6 +237,34 @@ def growth(tmp: Path) -> dict:
         k = int(round(m / 0.1))
         out[f"us_per_step_at_{m:g}s"] = round(1e6 * statistics.median(stamps[k - 500 : k]), 1)
     out["ratio_3600_vs_200"] = round(out["us_per_step_at_3600s"] / out["us_per_step_at_200s"], 3)
+    out |= scheduling(marks)
+    return out
+
+
+def scheduling(marks: tuple[float, ...]) -> dict:
+    """The frame scheduling alone, per step (lidar 10 Hz, radar 0.4 Hz, ground truth 10 Hz; no frame due): all the
+    frame times since the start (``frame_times``, what a step cost before) vs only those not run yet
+    (``frame_times_from``). Median of 300 repetitions each: pure functions, so the machine's load matters less."""
+    from seatwin.sim import timing
+
+    t0 = 1.6e9
+    rates = ((10.0, 0.0), (0.4, 0.0), (10.0, 0.0))
+    out = {}
+    for m in marks:
+        t1 = t0 + m + 0.05
+        firsts = [len(timing.periodic_times(t0, t1, r, p)) for r, p in rates]
+        for name, fn in (
+            ("all", lambda t1=t1: [timing.periodic_times(t0, t1, r, p) for r, p in rates]),
+            ("from", lambda t1=t1, ks=firsts: [timing.periodic_times_from(t0, t1, r, p, k) for (r, p), k in zip(rates, ks)]),
+        ):
+            if name == "from" and not hasattr(timing, "periodic_times_from"):
+                continue
+            reps = []
+            for _ in range(300):
+                c0 = time.perf_counter()
+                fn()
+                reps.append(time.perf_counter() - c0)
+            out[f"schedule_{name}_us_at_{m:g}s"] = round(1e6 * statistics.median(reps), 1)
     return out
 
 
