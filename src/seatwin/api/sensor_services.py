@@ -26,7 +26,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
-from seatwin.api.streaming import camera_bytes, lidar_bytes
+from seatwin.api.wire import camera_bytes, lidar_bytes
 from seatwin.errors import ParameterError
 
 LIDAR, RADAR, OPTICAL = "LIDAR", "RADAR", "OPTICAL"

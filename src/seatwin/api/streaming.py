@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 
 from seatwin.api.proto import navigation_pb2, navigation_pb2_grpc, sensor_streaming_pb2, sensor_streaming_pb2_grpc
+from seatwin.api.wire import camera_bytes, image_from_wire, lidar_bytes
 from seatwin.errors import InputError, ParameterError
 from seatwin.recording.pointcloud import FLOAT32, FLOAT64, UINT32, VLP16_LAYOUT, Field, Layout, pack
 
@@ -53,24 +54,6 @@ SPOKE_LAYOUT = Layout(
 the spoke, and the rotation's ``rangeStart``, ``rangeIncrement``, ``minIntensity``, ``maxIntensity``."""
 
 _POINTFIELD_CONSTANTS = {"INT8": 1, "UINT8": 2, "INT16": 3, "UINT16": 4, "INT32": 5, "UINT32": 6, "FLOAT32": 7, "FLOAT64": 8}
-
-
-def lidar_bytes(sweep: Any) -> bytes:
-    """One sweep's points (columns x, y, z, intensity, ring, time) in the Table 4.2 layout, little endian."""
-    data = pack(VLP16_LAYOUT, x=sweep.x, y=sweep.y, z=sweep.z, intensity=sweep.intensity, ring=sweep.ring, time=sweep.time)
-    return np.ascontiguousarray(data).tobytes()
-
-
-def camera_bytes(bgr: np.ndarray) -> bytes:
-    """An H×W×3 bgr8 image (rows top down) as Gemini puts a camera image on the wire: R, G, B bytes a pixel,
-    rows bottom to top (Unity's RGB24 GPU readback; Gemini's ROS adapter flips the rows and converts
-    RGB to BGR before publishing bgr8)."""
-    return np.ascontiguousarray(np.asarray(bgr, np.uint8)[::-1, :, ::-1]).tobytes()
-
-
-def image_from_wire(data: bytes, width: int, height: int) -> np.ndarray:
-    """:func:`camera_bytes` undone: the H×W×3 bgr8 image, rows top down (what Gemini's ROS adapter publishes)."""
-    return np.ascontiguousarray(np.frombuffer(data, np.uint8).reshape(height, width, 3)[::-1, :, ::-1])
 
 
 def lidar_request(frame_id: str, t: float, sweep: Any) -> Any:
