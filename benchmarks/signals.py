@@ -39,7 +39,7 @@ def hostile_serve(tmp: Path) -> dict:
     import grpc
 
     from seatwin.api.client import SimulationClient
-    from seatwin.api.proto import gemini_osp_pb2
+    from seatwin.api.proto import simulation_pb2
 
     proc = subprocess.Popen(
         [*CLI, "serve", "--port", "0", "--out", str(tmp / "serve"), "--sensors", "none"], stdout=subprocess.PIPE, text=True
@@ -52,7 +52,7 @@ def hostile_serve(tmp: Path) -> dict:
             c.set_start_time(1.6e9)
             c.step(ok, 0.0, 0.1)
             out["rss_before_mb"] = round(_vm_hwm_mb(proc.pid), 1)
-            pose = gemini_osp_pb2.StepRequest(VesselPoses=[gemini_osp_pb2.Pose(north=1.0, east=2.0, heading=3.0)])
+            pose = simulation_pb2.StepRequest(VesselPoses=[simulation_pb2.Pose(north=1.0, east=2.0, heading=3.0)])
             big = pose.SerializeToString() * 6_200_000  # 105 MB: the bytes of a 6.2 M-pose StepRequest, built at once
             raw = c.channel.unary_unary("/GeminiOSPInterface.Simulation/DoStep")  # bytes in, bytes out
             t0 = time.perf_counter()

@@ -18,19 +18,66 @@ PROTOS = sorted(PROTO_DIR.glob("*.proto"))
 
 def test_generated_modules_match_the_protos(tmp_path):
     pytest.importorskip("grpc_tools")
-    dest = tmp_path / "seatwin" / "api" / "proto"
-    dest.mkdir(parents=True)
-    for p in PROTOS:
-        shutil.copy(p, dest / p.name)
-    names = [f"seatwin/api/proto/{p.name}" for p in PROTOS]
-    cmd = [sys.executable, "-m", "grpc_tools.protoc", f"-I{tmp_path}", f"--python_out={tmp_path}"]
-    cmd += [f"--pyi_out={tmp_path}", f"--grpc_python_out={tmp_path}", *names]
-    subprocess.run(cmd, check=True, capture_output=True, cwd=tmp_path)
-    generated = sorted(q.name for q in dest.iterdir() if "_pb2" in q.name)
+    from seatwin.api.proto.generate import generate
+
+    generated = sorted(q.name for q in generate(tmp_path))
     committed = sorted(q.name for q in PROTO_DIR.iterdir() if "_pb2" in q.name)
     assert generated == committed and len(generated) == 3 * len(PROTOS)
     for name in generated:
-        assert (dest / name).read_text() == (PROTO_DIR / name).read_text(), f"{name} drifted: regenerate (see seatwin.api.proto)"
+        assert (tmp_path / name).read_text() == (PROTO_DIR / name).read_text(), f"{name} drifted: regenerate"
+
+
+# Gemini's file names, packages and the SHA-256 of each serialized FileDescriptorProto that grpcio-tools
+# makes of Gemini's own .proto files (Gemini-team/Gemini at ce538df, API/Protobuf/ProtoFiles/<name>/<name>.proto,
+# compiled as its API README says: ``-I.`` in the folder). Equal bytes are what lets one process import both.
+GEMINI = {
+    "simulation.proto": ("GeminiOSPInterface", "1761c25aa050d45d195e70452ae092c799b0720bb78d2500651db403729d1489"),
+    "sensor_streaming.proto": ("sensorstreaming", "8e86aac0c33fe57c302e8563a62a5e3262dcd709cc01bb25c9c4e76add3a2daf"),
+    "navigation.proto": ("navigation", "7b7d53964df6526c3d56ee49208cf6f0f25ee2e25a9938171137eb986f1c5462"),
+    "force_control.proto": ("gemini.forcecontrol", "f2d4bf40a094224d5fe20bad7fd3a019594eb0a3d4c5595543ab920346738713"),
+    "sensordata.proto": ("sensordata", "5b1529b19c41d016e32298c7a9f7431faf9e5d0235a3bf4ea8215c4bea8390e3"),
+    "sensormanagement.proto": ("sensormanagement", "e36ae736feaf543d78559556a39dd238757245a27817521c247cc2e449d0cfd4"),
+}
+
+
+def _modules() -> dict:
+    import importlib
+
+    return {name: importlib.import_module(f"seatwin.api.proto.{name[:-6]}_pb2") for name in GEMINI}
+
+
+def test_descriptors_are_geminis_byte_for_byte():
+    import hashlib
+
+    from google.protobuf import descriptor_pb2
+
+    assert sorted(p.name for p in PROTOS) == sorted(GEMINI)
+    for name, module in _modules().items():
+        fd = descriptor_pb2.FileDescriptorProto()
+        module.DESCRIPTOR.CopyToProto(fd)
+        assert (fd.name, fd.package) == (name, GEMINI[name][0])
+        assert hashlib.sha256(fd.SerializeToString()).hexdigest() == GEMINI[name][1], name
+
+
+def test_geminis_modules_and_seatwins_import_in_one_process(tmp_path):
+    """Generate the protos as a Gemini user does (top-level ``simulation_pb2`` …, sibling imports), import those
+    first in a fresh interpreter, then seatwin's: no duplicate symbol, and the classes are the same ones."""
+    pytest.importorskip("grpc_tools")
+    for p in PROTOS:
+        shutil.copy(p, tmp_path / p.name)
+    cmd = [sys.executable, "-m", "grpc_tools.protoc", "-I.", "--python_out=.", "--grpc_python_out=.", *sorted(GEMINI)]
+    subprocess.run(cmd, check=True, capture_output=True, cwd=tmp_path)
+    script = (
+        "import sys; sys.path.insert(0, sys.argv[1])\n"
+        "import simulation_pb2, simulation_pb2_grpc, sensor_streaming_pb2_grpc, navigation_pb2_grpc\n"
+        "import force_control_pb2_grpc, sensordata_pb2_grpc, sensormanagement_pb2_grpc\n"
+        "from seatwin.api.proto import simulation_pb2 as ours, sensor_streaming_pb2_grpc as s, force_control_pb2_grpc\n"
+        "from seatwin.api import server, streaming\n"
+        "assert ours.StepRequest is simulation_pb2.StepRequest\n"
+        "print('ok')\n"
+    )
+    out = subprocess.run([sys.executable, "-c", script, str(tmp_path)], capture_output=True, text=True)
+    assert out.returncode == 0 and out.stdout.strip() == "ok", out.stderr
 
 
 def _fields(msg) -> list[tuple[str, int, str, bool]]:
@@ -43,9 +90,9 @@ def _fields(msg) -> list[tuple[str, int, str, bool]]:
 
 
 def test_messages_are_geminis_field_for_field():
-    from seatwin.api.proto import gemini_osp_pb2 as g
     from seatwin.api.proto import navigation_pb2 as n
-    from seatwin.api.proto import sensorstreaming_pb2 as s
+    from seatwin.api.proto import sensor_streaming_pb2 as s
+    from seatwin.api.proto import simulation_pb2 as g
 
     assert g.DESCRIPTOR.package == "GeminiOSPInterface"
     assert _fields(g.Pose) == [("north", 1, "float", False), ("east", 2, "float", False), ("heading", 3, "float", False)]

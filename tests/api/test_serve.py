@@ -190,7 +190,7 @@ def test_serve_renders_the_camera_rig(tmp_path):
                 client.step([(20.0 + k, 2.0, 0.0), (10.0, -30.0, 90.0), (0.0, 0.0, 0.0)], k * 0.1)
     finally:
         res = handle.stop()
-    assert res.frames == {"ground_truth": 2, "camera": 2}  # 5 Hz: frames at 0 and 0.2 s
+    assert res.frames == {"ground_truth": 3, "camera": 2}  # before the last step (0.3 s): 10 Hz and 5 Hz frames
     counts = _counts(tmp_path / "cam")
     for cam in ("front", "left", "right"):
         for kind in ("image_raw", "camera_info", "labels"):

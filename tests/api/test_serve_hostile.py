@@ -11,7 +11,7 @@ import grpc
 import pytest
 
 from seatwin.api.client import SimulationClient
-from seatwin.api.proto import gemini_osp_pb2
+from seatwin.api.proto import simulation_pb2
 from seatwin.api.server import serve
 from seatwin.recording import open_bag
 
@@ -81,8 +81,8 @@ def _stalled_call(address: str, release: threading.Event) -> tuple[threading.Thr
     channel = grpc.insecure_channel(address)
     call = channel.stream_unary(
         "/GeminiOSPInterface.Simulation/DoStep",
-        request_serializer=gemini_osp_pb2.StepRequest.SerializeToString,
-        response_deserializer=gemini_osp_pb2.StepResponse.FromString,
+        request_serializer=simulation_pb2.StepRequest.SerializeToString,
+        response_deserializer=simulation_pb2.StepResponse.FromString,
     )
     outcome: list = []
 
@@ -117,7 +117,7 @@ def test_a_body_that_never_comes_stalls_no_one_and_is_given_up(tmp_path):
                 assert c.step(OK, k / 10)
         for thread, outcome in stalled:
             thread.join(60)  # given up after the connection's age and grace
-            assert not thread.is_alive() and outcome and outcome[0] != gemini_osp_pb2.StepResponse(success=True), outcome
+            assert not thread.is_alive() and outcome and outcome[0] != simulation_pb2.StepResponse(success=True), outcome
     finally:
         release.set()
         res = handle.stop()

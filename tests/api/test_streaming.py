@@ -9,9 +9,10 @@ import grpc
 import numpy as np
 import pytest
 
-from seatwin.api.proto import navigation_pb2, navigation_pb2_grpc, sensorstreaming_pb2, sensorstreaming_pb2_grpc
+from seatwin.api.proto import navigation_pb2, navigation_pb2_grpc, sensor_streaming_pb2, sensor_streaming_pb2_grpc
 from seatwin.api.streaming import (
     SensorStreamer,
+    camera_request,
     heading_of_quaternion,
     lidar_request,
     radar_request,
@@ -78,16 +79,18 @@ def test_simulate_streams_into_record_stream(tmp_path):
             vesselName="milliAmpere",
         )
         assert nav.SendNavigationMessage(msg).success
-        bad = sensorstreaming_pb2.RadarStreamingRequest(numSpokes=4, numSamples=4, radarSpokes=b"123")
+        bad = sensor_streaming_pb2.RadarStreamingRequest(numSpokes=4, numSamples=4, radarSpokes=b"123")
         with pytest.raises(grpc.RpcError) as e:
-            sensorstreaming_pb2_grpc.SensorStreamingStub(channel).StreamRadarSensor(bad)
+            sensor_streaming_pb2_grpc.SensorStreamingStub(channel).StreamRadarSensor(bad)
         assert e.value.code() == grpc.StatusCode.INVALID_ARGUMENT
         channel.close()
     finally:
         streamer.close()
         counts = rec.stop()
-    assert streamer.sent == {"lidar": res.frames["lidar"], "camera": 0, "radar": res.frames["radar"]} and res.frames["radar"] >= 1
-    assert counts == {"lidar": 10, "camera": 0, "radar": res.frames["radar"], "navigation": 1}
+    nav = 3 * res.frames["ground_truth"]  # a NavigationRequest per vessel and ground-truth frame
+    assert streamer.sent == {"lidar": res.frames["lidar"], "camera": 0, "radar": res.frames["radar"], "navigation": nav}
+    assert res.frames["radar"] >= 1
+    assert counts == {"lidar": 10, "camera": 0, "radar": res.frames["radar"], "navigation": nav + 1}
     assert json.loads((tmp_path / "rec" / "manifest.json").read_text())["completed"] is True
     with open_bag(tmp_path / "sim") as a, open_bag(tmp_path / "rec") as b:
         ca, cb = list(a.point_clouds("/lidar/points")), list(b.point_clouds("/lidar/points"))
@@ -98,7 +101,8 @@ def test_simulate_streams_into_record_stream(tmp_path):
         spokes = list(b.images("/radar/spokes"))
         assert len(spokes) == res.frames["radar"] and spokes[0].pixels.ndim >= 2
         truth = b.ground_truth()["milliAmpere"]
-        assert truth.north[0] == pytest.approx(10.0) and truth.heading[0] == pytest.approx(math.pi / 2, abs=1e-6)
+        sent = next(i for i, tt in enumerate(truth.time) if tt == pytest.approx(1.6e9))
+        assert truth.north[sent] == pytest.approx(10.0) and truth.heading[sent] == pytest.approx(math.pi / 2, abs=1e-6)
     (rotation, *_) = recorded_spokes(tmp_path / "rec")  # each spoke's azimuth at the centre of its step
     ns = rotation.num_spokes
     assert rotation.intensities.shape == (ns, spokes[0].pixels.shape[1]) and len(rotation.azimuth) == ns > 100
@@ -106,7 +110,8 @@ def test_simulate_streams_into_record_stream(tmp_path):
 
 
 def test_camera_images_and_serve_stream(tmp_path):
-    """A camera frame (rgb8 on the wire) lands as the same pixels; ``serve``'s on_frame streams too."""
+    """A camera frame goes on the wire in Gemini's order (RGB, rows bottom up) and is recorded as Gemini's ROS
+    adapter publishes it (bgr8, rows top down): the simulated pixels exactly; ``serve``'s on_frame streams too."""
     from seatwin.api.client import SimulationClient
     from seatwin.api.server import serve
 
@@ -127,11 +132,32 @@ def test_camera_images_and_serve_stream(tmp_path):
     finally:
         streamer.close()
         counts = rec.stop()
-    assert counts["camera"] == 1 and streamer.sent == {"lidar": 0, "camera": 1, "radar": 0}
+    assert counts["camera"] == 1 and streamer.sent == {"lidar": 0, "camera": 1, "radar": 0, "navigation": 3 * 2}
     with open_bag(tmp_path / "rec") as b:
         (img,) = list(b.images("/camera/front/image_raw"))
-        px = np.asarray(img.pixels).reshape(4, 6, 3)
-        assert (px[:, :, ::-1] == Img.bgr).all() or (px == Img.bgr).all()
+        assert img.encoding == "bgr8" and np.array_equal(np.asarray(img.pixels).reshape(4, 6, 3), Img.bgr)
+    wire = np.frombuffer(camera_request("camera/front", 0.0, Img.bgr).data, np.uint8).reshape(4, 6, 3)
+    assert np.array_equal(wire[0, 0], Img.bgr[3, 0, ::-1]) and np.array_equal(wire, Img.bgr[::-1, :, ::-1])
+
+
+def test_record_stream_refuses_an_image_of_the_wrong_size(tmp_path):
+    rec = record_stream(tmp_path / "rec", port=0)
+    channel = grpc.insecure_channel(rec.address)
+    try:
+        stub = sensor_streaming_pb2_grpc.SensorStreamingStub(channel)
+        for data in (b"\0" * (4 * 6 * 2), b""):
+            bad = sensor_streaming_pb2.CameraStreamingRequest(data=data, width=6, height=4, frame_id="camera/front")
+            with pytest.raises(grpc.RpcError) as e:
+                stub.StreamCameraSensor(bad)
+            assert e.value.code() == grpc.StatusCode.INVALID_ARGUMENT and "not a 6×4 image" in e.value.details()
+        mono = sensor_streaming_pb2.CameraStreamingRequest(data=bytes(range(24)), width=6, height=4, frame_id="camera/ir")
+        assert stub.StreamCameraSensor(mono).success
+    finally:
+        channel.close()
+        rec.stop()
+    with open_bag(tmp_path / "rec") as b:
+        (img,) = list(b.images("/camera/ir/image_raw"))
+    assert img.encoding == "mono8" and np.array_equal(np.asarray(img.pixels).reshape(4, 6), np.arange(24).reshape(4, 6)[::-1])
 
 
 def test_radar_spokes_keep_their_azimuths(tmp_path):
@@ -175,3 +201,45 @@ def test_radar_spokes_keep_their_azimuths(tmp_path):
         assert np.array_equal(g.time_in_seconds, spokes.time_in_seconds)
         assert np.array_equal(g.intensities, spokes.intensities)
         assert (g.range_start, g.range_increment, g.min_intensity, g.max_intensity) == (2.5, 0.75, 3, 200)
+
+
+def test_stream_to_a_port_where_nothing_listens_fails_at_once_in_one_line(tmp_path, capsys):
+    import socket
+
+    from seatwin.cli.main import run
+    from seatwin.errors import ParameterError
+
+    with socket.socket() as s:  # a free port, closed again: nothing listens there
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    with pytest.raises(ParameterError, match=rf"nothing answers at 127.0.0.1:{port} \(waited 0.5 s\)"):
+        SensorStreamer(f"127.0.0.1:{port}", connect_timeout_s=0.5)
+    args = ["simulate", "ferry_crossing", "--duration", "1", "--sensors", "lidar", "--no-progress"]
+    assert run([*args, "--out", str(tmp_path / "r"), "--stream", f"127.0.0.1:{port}"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--stream" in err[0] and f"nothing answers at 127.0.0.1:{port}" in err[0]
+    assert not (tmp_path / "r" / "manifest.json").exists()  # failed before the run started
+
+
+@pytest.mark.slow
+def test_a_bag_recorded_from_simulate_stream_can_be_tracked(tmp_path):
+    """simulate → --stream → record-stream: the NavigationRequests are the ownship's ground truth and the lidar mount
+    is the thesis rig's, so ``seatwin track`` runs on the streamed bag as on simulate's own."""
+    from seatwin.pipeline.simulate import simulate_run
+    from seatwin.pipeline.track import map_hint, track_recording
+
+    rec = record_stream(tmp_path / "rec", port=0)
+    streamer = SensorStreamer(rec.address)
+    try:
+        sim = tmp_path / "sim"
+        res = simulate_run("ferry_crossing", sim, duration=4.0, progress=False, sensors=("lidar",), on_frame=streamer.on_frame)
+    finally:
+        streamer.close()
+        rec.stop()
+    water = map_hint(json.loads((sim / "manifest.json").read_text()), sim)  # the stream carries no map: give both the same
+    a = track_recording(sim, sensors=("lidar",), map_spec=water)
+    b = track_recording(tmp_path / "rec", sensors=("lidar",), map_spec=water)
+    assert b.n_scans == a.n_scans == res.frames["lidar"] == 40
+    assert b.n_confirmed == a.n_confirmed >= 1 and b.n_tracks == a.n_tracks
+    assert np.array_equal(b.tracks.track_id, a.tracks.track_id)
+    np.testing.assert_allclose(b.tracks.state[:, :2], a.tracks.state[:, :2], atol=1e-2)  # the ownship pose: float32 on the wire

@@ -24,7 +24,7 @@ def _bridge_module():
 
 
 def test_bridge_encodes_geminis_messages_as_protobuf_does():
-    from seatwin.api.proto import gemini_osp_pb2 as pb
+    from seatwin.api.proto import simulation_pb2 as pb
 
     b = _bridge_module()
     poses = [(12.5, -3.25, 359.0), (0.0, 0.0, 0.0), (-1e3, 2e3, 90.0)]

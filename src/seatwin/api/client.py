@@ -19,12 +19,12 @@ class SimulationClient:
     def __init__(self, address: str, timeout_s: float | None = 60.0):
         import grpc
 
-        from seatwin.api.proto import gemini_osp_pb2, gemini_osp_pb2_grpc
-        from seatwin.api.server import GRPC_OPTIONS
+        from seatwin.api.channel import GRPC_OPTIONS
+        from seatwin.api.proto import simulation_pb2, simulation_pb2_grpc
 
-        self._pb = gemini_osp_pb2
+        self._pb = simulation_pb2
         self.channel = grpc.insecure_channel(address, options=GRPC_OPTIONS)
-        self.stub = gemini_osp_pb2_grpc.SimulationStub(self.channel)
+        self.stub = simulation_pb2_grpc.SimulationStub(self.channel)
         self.timeout_s = timeout_s
 
     def set_start_time(self, posix: float) -> bool:

@@ -92,6 +92,13 @@ class LiveTracks:
             s[:, _HEADING, 0] = w
         self.n = k + 1
 
+    def last(self, vessel: int) -> tuple[float, float, float, float, float, float]:
+        """Vessel ``vessel`` at the last sample: north, east, heading (unwrapped), v_north, v_east, yaw rate
+        (one-sided differences; zero velocities with a single sample)."""
+        k = self.n - 1
+        n, e, h = self._s[vessel, :3, k].tolist()
+        return (n, e, h, *(self._s[vessel, 3:, k].tolist() if k else (0.0, 0.0, 0.0)))
+
     def state(self, t: ArrayLike) -> NDArray[np.float64]:
         """(vessels, 6, len(t)): north, east, heading (wrapped to [−π, π)), v_north, v_east, yaw rate at times
         ``t`` within the samples (needs two), interpolated as ``Trajectory.state_at``."""
@@ -150,6 +157,9 @@ class LiveGroundTruth(GroundTruthSensor):
 
     def frame_times(self, t0: float, t1: float) -> NDArray[np.float64]:
         return Periodic.frame_times(self, t0, t1)
+
+    def frame_times_from(self, t0: float, t1: float, first: int) -> NDArray[np.float64]:
+        return Periodic.frame_times_from(self, t0, t1, first)
 
     def capture(self, t: float, frame: int) -> list[VesselPose]:
         rows = self.tracks.state(t)[:, :, 0].tolist()

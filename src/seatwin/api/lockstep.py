@@ -40,6 +40,7 @@ from numpy.typing import NDArray
 from pydantic import Field, field_validator
 
 from seatwin.api.live import LiveGroundTruth, LiveTracks
+from seatwin.api.motion import ForceDriven, LinearManoeuvring3DOF, ScenarioReplay, VesselDynamics, VesselMotion, body_velocity
 from seatwin.defaults import DEFAULT_SENSORS
 from seatwin.errors import InputError, ParameterError
 from seatwin.layout.harbours import check_harbour_spec
@@ -47,7 +48,7 @@ from seatwin.recording.manifest import MANIFEST_NAME
 from seatwin.scenario import Role, Scenario, Trajectory, Vessel
 from seatwin.scenario.defaults import NOMINAL_DIMENSIONS, OWNSHIP_NAME, RAVNKLOA, TARGETS_BY_COLUMN
 from seatwin.settings import Settings
-from seatwin.sim.loop import SimulationResult, StepInterrupted, Stepper
+from seatwin.sim.loop import NOT_RENDERED, SimulationResult, StepInterrupted, Stepper
 from seatwin.sim.sensors import GroundTruthSensor, LidarSensor, SimSensor
 
 DEFAULT_VESSELS: tuple[str, ...] = (TARGETS_BY_COLUMN[1][0], TARGETS_BY_COLUMN[2][0], OWNSHIP_NAME)
@@ -124,11 +125,19 @@ def _model_of(name: str) -> tuple[str, Any]:
 
 class _Due:
     """A sensor as the stepper sees it in lock-step: its frames only up to ``limit`` (set each step);
-    ``before_capture(t)`` runs first (the scene's re-posing). Everything else is the sensor's own."""
+    ``before_capture(t)`` runs first (the scene's re-posing); a sensor whose served name is in ``off``
+    (``SensorManagement.StopRendering``) makes no frame — a rig camera's image is left out of the rig's
+    frame, the rig makes none once all its cameras are off. Everything else is the sensor's own."""
 
-    def __init__(self, sensor: SimSensor, span_s: float, before_capture: Callable[[float], None] | None = None):
+    def __init__(
+        self, sensor: SimSensor, span_s: float, before_capture: Callable[[float], None] | None = None, off: set[str] | None = None
+    ):
         self.sensor, self.span_s, self.before_capture = sensor, span_s, before_capture
+        self.off = off if off is not None else set()
         self.limit = -math.inf
+        mounts = getattr(sensor, "mounts", None)
+        self.cameras = [f"camera/{m.name}" for m in mounts] if mounts is not None else None
+        """A camera rig's served names (``camera/<name>``, as its images are streamed), else None."""
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self.sensor, name)
@@ -136,10 +145,39 @@ class _Due:
     def frame_times(self, t0: float, t1: float) -> NDArray[np.float64]:
         return self.sensor.frame_times(t0, min(t1, self.limit))
 
+    def frame_times_from(self, t0: float, t1: float, first: int) -> NDArray[np.float64]:
+        tail = getattr(self.sensor, "frame_times_from", None)
+        t1 = min(t1, self.limit)
+        return tail(t0, t1, first) if tail is not None else self.sensor.frame_times(t0, t1)[first:]
+
     def capture(self, t: float, frame: int) -> Any:
+        off = self.off
+        if off and (all(c in off for c in self.cameras) if self.cameras is not None else self.sensor.name in off):
+            return NOT_RENDERED
         if self.before_capture is not None:
             self.before_capture(t)
-        return self.sensor.capture(t, frame)
+        data = self.sensor.capture(t, frame)
+        if off and self.cameras is not None:
+            data = [img for img in data if f"camera/{img.name}" not in off]
+        return data
+
+    def record(self, writer: Any, t: float, data: Any) -> None:
+        if self.cameras is not None and len(data) != len(self.cameras):  # some cameras of the rig are off
+            names = {img.name for img in data}
+            rig = _Subrig(self.sensor, [m for m in self.sensor.mounts if m.name in names])  # type: ignore[attr-defined]
+            type(self.sensor).record(rig, writer, t, data)  # type: ignore[arg-type]
+        else:
+            self.sensor.record(writer, t, data)
+
+
+class _Subrig:
+    """A camera rig with only some of its mounts (what its ``record`` writes when some cameras are off)."""
+
+    def __init__(self, rig: Any, mounts: list[Any]):
+        self._rig, self.mounts = rig, mounts
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._rig, name)
 
 
 def _span_of(sensor: SimSensor) -> float:
@@ -158,6 +196,7 @@ class LockstepSimulation:
         settings: LockstepSettings | None = None,
         *,
         on_frame: Callable[[SimSensor, float, int, Any], None] | None = None,
+        dynamics: VesselDynamics | None = None,
     ):
         from seatwin.recording import RecordingWriter
 
@@ -179,11 +218,23 @@ class LockstepSimulation:
             vessels.append(Vessel(name, role, placeholder, model, dims))
         self.scenario = Scenario("served", vessels, origin=RAVNKLOA, seed=s.seed, source="seatwin serve")
         self.tracks = LiveTracks(len(vessels))
+        self.dynamics: VesselDynamics = dynamics if dynamics is not None else LinearManoeuvring3DOF()
+        """What a force-driven vessel follows (:mod:`seatwin.api.motion`)."""
+        self.motions: list[VesselMotion] = [ScenarioReplay() for _ in vessels]
+        self._driven: list[int] = []
+        """Vessels whose motion is not the steps' poses (force-driven)."""
+        self._first_forces: dict[int, tuple[float, float, float]] = {}
+        """Forces applied before the first step: the vessel starts at rest at its first pose."""
         self.sensors = self._sensors()
         harbour, water_mask = self._harbour()
         self.scenario.environment["harbour"] = harbour
         self._scenes = {id(sc): sc for sc in (self._scene_of(x) for x in self.sensors) if sc is not None}
-        self._due = [_Due(x, _span_of(x), self._repose if self._scene_of(x) is not None else None) for x in self.sensors]
+        self.rendering_off: set[str] = set()
+        """Served sensor names whose rendering is stopped (:meth:`set_rendering`)."""
+        self._due = [
+            _Due(x, _span_of(x), self._repose if self._scene_of(x) is not None else None, self.rendering_off)
+            for x in self.sensors
+        ]
         self._posed_n = 0
         """Samples the scene was last posed with."""
         self._scene_from = -math.inf
@@ -268,6 +319,44 @@ class LockstepSimulation:
         s = self.settings.max_step_s
         return float(s) if s is not None else max(10.0 * step_size, MIN_MAX_STEP_S)
 
+    def set_rendering(self, name: str, on: bool) -> None:
+        """Start or stop the frames of served sensor ``name`` (``lidar``, ``radar``, ``camera/<name>``: see
+        :func:`seatwin.api.sensor_services.served_sensors`) from the next frame on."""
+        (self.rendering_off.discard if on else self.rendering_off.add)(name)
+
+    def vessel_index(self, name: str) -> int:
+        """The index of vessel ``name`` in ``settings.vessels``."""
+        try:
+            return self.settings.vessels.index(name)
+        except ValueError:
+            expected = f"expected one of the served vessels {list(self.settings.vessels)}"
+            raise ParameterError("vesselId", f"{expected}, got {name!r}") from None
+
+    def apply_force(self, vessel: str, x: float, y: float, n: float) -> None:
+        """Gemini's ``ApplyForce``: from now on vessel ``vessel`` is moved by the body-frame force (X, Y [N],
+        N [N·m]), held until the next call; the poses the steps send for it are ignored from the next step on.
+
+        Applied before the first step, the vessel starts at rest at the first step's pose; after, from its
+        last received pose and velocity."""
+        if self.closed or self.interrupted:
+            raise ParameterError("time", "the simulation is closed")
+        i = self.vessel_index(vessel)
+        force = (float(x), float(y), float(n))
+        if not all(math.isfinite(f) for f in force):
+            raise ParameterError("generalizedForce", f"expected finite forces, got {list(force)}")
+        motion = self.motions[i]
+        if isinstance(motion, ForceDriven):
+            motion.set_force(*force)
+        elif not self.tracks.n:
+            self._first_forces[i] = force
+        else:
+            t = self.tracks.sample_time(-1)
+            north, east, heading, vn, ve, r = self.tracks.last(i)
+            motion = ForceDriven(self.dynamics, t, np.array([north, east, heading]), body_velocity(heading, vn, ve, r))
+            motion.set_force(*force)
+            self.motions[i] = motion
+            self._driven.append(i)
+
     def step(
         self, poses: Sequence[Sequence[float]], time: float, step_size: float = 0.0, interrupt: threading.Event | None = None
     ) -> int:
@@ -312,7 +401,18 @@ class LockstepSimulation:
                     f"a step may advance at most {limit:g} s (max_step; stepSize {step_size:g}): got {time!r} s "
                     f"after a step at {last - self.start!r} s",
                 )
-        tracks.append(t, p[:, 0], p[:, 1], np.deg2rad(p[:, 2]))
+        p[:, 2] = np.deg2rad(p[:, 2])
+        if self._first_forces:  # after every check: a refused step changes nothing
+            for i, force in self._first_forces.items():
+                self.motions[i] = ForceDriven(self.dynamics, t, p[i])
+                self.motions[i].set_force(*force)  # type: ignore[attr-defined]
+                self._driven.append(i)
+            self._first_forces = {}
+        for i in self._driven:
+            p[i] = self.motions[i].pose(t, p[i])
+        tracks.append(t, p[:, 0], p[:, 1], p[:, 2])
+        for i in self._driven:
+            self.motions[i].commit(t)
         if self.stepper is None and rel >= 0:
             hook = self.on_frame
             on_frame = None if hook is None else (lambda d, t, k, data: hook(d.sensor, t, k, data))  # the sensor, not its _Due

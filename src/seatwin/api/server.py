@@ -1,8 +1,11 @@
-"""The Gemini ``Simulation`` gRPC service (``GeminiOSPInterface``): ``seatwin serve``.
+"""Gemini's simulator-side gRPC services: ``seatwin serve``.
 
-:func:`serve` starts a gRPC server whose ``DoStep``/``SetStartTime`` drive a
-:class:`~seatwin.api.lockstep.LockstepSimulation` (the one loop, recording as ``seatwin simulate``
-does), and ``DoStep`` answers only when the frames it made due are recorded (lock-step).
+:func:`serve` starts a gRPC server whose ``Simulation.DoStep``/``SetStartTime`` (``GeminiOSPInterface``)
+drive a :class:`~seatwin.api.lockstep.LockstepSimulation` (the one loop, recording as ``seatwin
+simulate`` does), and ``DoStep`` answers only when the frames it made due are recorded (lock-step).
+On the same address: ``gemini.forcecontrol.ForceControl.ApplyForce`` (the named vessel is then moved
+by forces, :mod:`seatwin.api.motion`), ``sensordata.Sensordata`` and
+``sensormanagement.SensorManagement`` (:mod:`seatwin.api.sensor_services`).
 
 Concurrency: several gRPC worker threads take calls, so a client that is slow to send (or never
 sends) its request body holds one of them, not the server; the calls are applied one at a time in
@@ -23,7 +26,7 @@ finishes the bag (manifest ``completed: true``, or ``false`` if a step was inter
 from __future__ import annotations
 
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from concurrent import futures
 from dataclasses import dataclass
 from pathlib import Path
@@ -31,14 +34,31 @@ from typing import Any
 
 import grpc
 
+from seatwin.api.channel import GRPC_OPTIONS, MAX_MESSAGE_BYTES  # noqa: F401 - GRPC_OPTIONS: re-exported
 from seatwin.api.lockstep import LockstepSettings, LockstepSimulation
-from seatwin.api.proto import gemini_osp_pb2, gemini_osp_pb2_grpc
+from seatwin.api.motion import VesselDynamics
+from seatwin.api.proto import (
+    force_control_pb2,
+    force_control_pb2_grpc,
+    sensordata_pb2,
+    sensordata_pb2_grpc,
+    sensormanagement_pb2,
+    sensormanagement_pb2_grpc,
+    simulation_pb2,
+    simulation_pb2_grpc,
+)
+from seatwin.api.sensor_services import (
+    RADAR,
+    FrameBoard,
+    ServedSensor,
+    find_sensor,
+    sensordata_bytes,
+    sensordata_stream,
+    served_sensors,
+)
 from seatwin.errors import InputError, ParameterError
 from seatwin.recording import RecordingError
 from seatwin.sim.loop import SimulationResult, StepInterrupted
-
-MAX_MESSAGE_BYTES = 256 * 1024 * 1024
-"""Clients' message-size limit both ways (what they send is bounded by the server they talk to)."""
 
 STREAM_MAX_MESSAGE_BYTES = 64 * 1024 * 1024
 """What ``record-stream`` accepts: a 612×512 RGB image is 0.94 MB, a dense VLP-16 cloud (16 × 1800
@@ -60,11 +80,6 @@ a request body that never comes is given up after ``CONNECTION_AGE_S`` + this.""
 SERVER_WORKERS = 8
 """gRPC worker threads: calls waiting for their bodies (or for the lock) do not hold up the others."""
 
-GRPC_OPTIONS = [
-    ("grpc.max_receive_message_length", MAX_MESSAGE_BYTES),
-    ("grpc.max_send_message_length", MAX_MESSAGE_BYTES),
-]
-
 
 def server_options(
     max_message_bytes: int, connection_age_s: float = CONNECTION_AGE_S, grace_s: float = CONNECTION_GRACE_S
@@ -84,14 +99,14 @@ def server_options(
     ]
 
 
-_STEP_OK = gemini_osp_pb2.StepResponse(success=True)
+_STEP_OK = simulation_pb2.StepResponse(success=True)
 
 
 def _message(exc: InputError) -> str:
     return exc.render(exc.param) if isinstance(exc, ParameterError) else str(exc)
 
 
-class SimulationServicer(gemini_osp_pb2_grpc.SimulationServicer):
+class SimulationServicer(simulation_pb2_grpc.SimulationServicer):
     """``DoStep``/``SetStartTime`` onto a :class:`LockstepSimulation`: one call at a time (``lock``), each
     run on the simulation's thread (``worker``); refused once ``interrupt`` is set."""
 
@@ -107,7 +122,7 @@ class SimulationServicer(gemini_osp_pb2_grpc.SimulationServicer):
             self.rejected += 1
         context.abort(code, message)
 
-    def _call(self, fn: Callable[[], Any], context: grpc.ServicerContext) -> None:
+    def call(self, fn: Callable[[], Any], context: grpc.ServicerContext) -> None:
         with self.lock:
             if self.interrupt.is_set() or self.sim.closed:
                 self._refuse(context, grpc.StatusCode.UNAVAILABLE, "the server is shutting down; no more steps are taken")
@@ -136,12 +151,89 @@ class SimulationServicer(gemini_osp_pb2_grpc.SimulationServicer):
             self.sim.step(poses, request.time, request.stepSize, interrupt=self.interrupt)
             self.steps += 1
 
-        self._call(step, context)
+        self.call(step, context)
         return _STEP_OK
 
     def SetStartTime(self, request: Any, context: grpc.ServicerContext) -> Any:  # noqa: N802 - Gemini's name
-        self._call(lambda: self.sim.set_start_time(request.time), context)
-        return gemini_osp_pb2.SetStartTimeResponse(success=True)
+        self.call(lambda: self.sim.set_start_time(request.time), context)
+        return simulation_pb2.SetStartTimeResponse(success=True)
+
+
+class ForceControlServicer(force_control_pb2_grpc.ForceControlServicer):
+    """``ApplyForce`` onto the simulation, one call at a time with the steps (the Simulation servicer's lock)."""
+
+    def __init__(self, calls: SimulationServicer):
+        self.calls = calls
+
+    def ApplyForce(self, request: Any, context: grpc.ServicerContext) -> Any:  # noqa: N802 - Gemini's name
+        f = request.generalizedForce
+        self.calls.call(lambda: self.calls.sim.apply_force(request.vesselId, f.x, f.y, f.n), context)
+        return force_control_pb2.ForceResponse(success=True)
+
+
+class SensorManagementServicer(sensormanagement_pb2_grpc.SensorManagementServicer):
+    """Lists the served sensors (with the address their ``Sensordata`` is served on); starts and stops their rendering."""
+
+    def __init__(self, calls: SimulationServicer, sensors: list[ServedSensor], host: str, port: int):
+        self.calls, self.sensors, self.host, self.port = calls, sensors, host, port
+
+    def _message(self, s: ServedSensor) -> Any:
+        pb = sensormanagement_pb2
+        kind = pb.SensorType.Value(s.type)
+        return pb.Sensor(id=s.id, type=kind, sensorWidth=s.width, sensorHeight=s.height, ipAddress=self.host, port=self.port)
+
+    def _render(self, sensor_id: int, on: bool, context: grpc.ServicerContext) -> bool:
+        found = [s for s in self.sensors if s.id == sensor_id]
+        if found:
+            self.calls.call(lambda: self.calls.sim.set_rendering(found[0].name, on), context)
+        return bool(found)
+
+    def StartRendering(self, request: Any, context: grpc.ServicerContext) -> Any:  # noqa: N802 - Gemini's name
+        return sensormanagement_pb2.StartRenderingResponse(success=self._render(request.sensorID, True, context))
+
+    def StopRendering(self, request: Any, context: grpc.ServicerContext) -> Any:  # noqa: N802
+        return sensormanagement_pb2.StopRenderingResponse(success=self._render(request.sensorID, False, context))
+
+    def GetAllSensorsOfType(self, request: Any, context: grpc.ServicerContext) -> Any:  # noqa: N802
+        kind = sensormanagement_pb2.SensorType.Name(request.type)
+        return sensormanagement_pb2.AllSensorsOfTypeResponse(sensors=[self._message(s) for s in self.sensors if s.type == kind])
+
+    def GetAllSensorsOnVessel(self, request: Any, context: grpc.ServicerContext) -> Any:  # noqa: N802
+        vessels = self.calls.sim.settings.vessels
+        if request.vesselID not in vessels:
+            expected = f"vesselID: expected one of the served vessels {list(vessels)}"
+            context.abort(grpc.StatusCode.NOT_FOUND, f"{expected}, got {request.vesselID!r}")
+        on = [self._message(s) for s in self.sensors if s.vessel == request.vesselID]
+        return sensormanagement_pb2.AllSensorsOnVesselResponse(sensors=on)
+
+
+class SensordataServicer(sensordata_pb2_grpc.SensordataServicer):
+    """A sensor's latest frame (``TransferSensordata``) or every new one (``StreamSensordata``); ``operation``
+    names the sensor."""
+
+    def __init__(self, board: FrameBoard, sensors: list[ServedSensor], radar_spokes: bool):
+        self.board, self.sensors, self.radar_spokes = board, sensors, radar_spokes
+
+    def _sensor(self, request: Any, context: grpc.ServicerContext) -> ServedSensor:
+        try:
+            sensor = find_sensor(self.sensors, request.operation)
+        except ParameterError as exc:
+            context.abort(grpc.StatusCode.INVALID_ARGUMENT, _message(exc))
+            raise  # abort raises; this keeps type checkers content
+        if sensor.type == RADAR and not self.radar_spokes:
+            context.abort(grpc.StatusCode.FAILED_PRECONDITION, "the radar's spokes are not kept: serve with radar_spokes on")
+        return sensor
+
+    def TransferSensordata(self, request: Any, context: grpc.ServicerContext) -> Any:  # noqa: N802 - Gemini's name
+        sensor = self._sensor(request, context)
+        seq, _, data = self.board.latest(sensor.source)
+        payload = sensordata_bytes(sensor, data) if seq else b""
+        return sensordata_pb2.SensordataResponse(data=payload, dataLength=len(payload))
+
+    def StreamSensordata(self, request: Any, context: grpc.ServicerContext) -> Iterator[Any]:  # noqa: N802
+        sensor = self._sensor(request, context)
+        for _, payload in sensordata_stream(self.board, sensor, context.is_active):
+            yield sensordata_pb2.SensordataResponse(data=payload, dataLength=len(payload))
 
 
 def check_port(port: int) -> None:
@@ -175,6 +267,10 @@ class ServerHandle:
     """The one thread every call runs on (and the simulation was built on)."""
     interrupt: threading.Event
     """Set: steps are refused and a step in progress stops before its next frame (Ctrl-C, SIGTERM)."""
+    board: FrameBoard
+    """Each sensor's latest frame (``Sensordata``)."""
+    sensors: list[ServedSensor]
+    """What ``SensorManagement`` lists."""
     _result: SimulationResult | None = None
 
     @property
@@ -185,6 +281,7 @@ class ServerHandle:
         """Stop serving (calls in flight finish within ``grace`` s), run the frames still due (unless a step
         was interrupted), finish the bag."""
         if self._result is None:
+            self.board.close()  # StreamSensordata calls end
             self.server.stop(grace).wait()
             with self.servicer.lock:
                 self._result = self.worker.submit(self.sim.close, completed=completed).result()
@@ -204,6 +301,7 @@ def serve(
     connection_age_s: float = CONNECTION_AGE_S,
     connection_grace_s: float = CONNECTION_GRACE_S,
     workers: int = SERVER_WORKERS,
+    dynamics: VesselDynamics | None = None,
     **changes: Any,
 ) -> ServerHandle:
     """Start the ``Simulation`` server recording into the new run directory ``run_dir``; return its handle.
@@ -211,7 +309,8 @@ def serve(
     ``settings`` (default :class:`LockstepSettings`) with ``changes`` to its fields; ``port`` 0
     picks a free one; ``on_frame(sensor, t, frame, data)`` sees every frame (streaming);
     ``interrupt``: an event whose setting (a signal handler's) refuses further steps and stops the one
-    in progress; the gRPC limits as :func:`server_options`; ``workers`` gRPC threads.
+    in progress; the gRPC limits as :func:`server_options`; ``workers`` gRPC threads; ``dynamics``: what
+    a vessel moved by ``ForceControl`` follows (default :class:`~seatwin.api.motion.LinearManoeuvring3DOF`).
     """
     from seatwin.settings import validated
 
@@ -222,8 +321,15 @@ def serve(
         raise ParameterError("workers", f"expected 1..256 gRPC worker threads, got {workers!r}")
     interrupt = interrupt if interrupt is not None else threading.Event()
     worker = futures.ThreadPoolExecutor(max_workers=1, thread_name_prefix="seatwin-serve")
+    board = FrameBoard()
+
+    def frame_hook(sensor: Any, t: float, frame: int, data: Any) -> None:
+        board.on_frame(sensor, t, frame, data)
+        if on_frame is not None:
+            on_frame(sensor, t, frame, data)
+
     try:
-        sim = worker.submit(LockstepSimulation, run_dir, settings, on_frame=on_frame).result()
+        sim = worker.submit(LockstepSimulation, run_dir, settings, on_frame=frame_hook, dynamics=dynamics).result()
     except BaseException:
         worker.shutdown()
         raise
@@ -233,12 +339,18 @@ def serve(
         maximum_concurrent_rpcs=4 * int(workers),
     )
     servicer = SimulationServicer(sim, worker, interrupt)
-    gemini_osp_pb2_grpc.add_SimulationServicer_to_server(servicer, server)
+    sensors = served_sensors(sim.sensors, settings.ownship)
+    simulation_pb2_grpc.add_SimulationServicer_to_server(servicer, server)
+    force_control_pb2_grpc.add_ForceControlServicer_to_server(ForceControlServicer(servicer), server)
+    sensordata_pb2_grpc.add_SensordataServicer_to_server(SensordataServicer(board, sensors, settings.radar_spokes), server)
+    management = SensorManagementServicer(servicer, sensors, host, port)
+    sensormanagement_pb2_grpc.add_SensorManagementServicer_to_server(management, server)
     try:
         bound = bind(server, host, port)
     except ParameterError:
         worker.submit(sim.close, completed=False, error="the server could not start").result()
         worker.shutdown()
         raise
+    management.port = bound
     server.start()
-    return ServerHandle(server, host, bound, sim, servicer, worker, interrupt)
+    return ServerHandle(server, host, bound, sim, servicer, worker, interrupt, board, sensors)

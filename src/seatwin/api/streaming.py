@@ -3,7 +3,8 @@
 * :class:`SensorStreamer` — the client: its :meth:`~SensorStreamer.on_frame` is the loop's
   ``on_frame`` hook (``seatwin simulate --stream``, ``seatwin serve --stream``) and sends every lidar
   cloud as a ``LidarStreamingRequest`` (thesis Table 4.2 layout, one row of points, little endian),
-  every camera image as a ``CameraStreamingRequest`` (rgb8, frame ``camera/<name>``) and every radar
+  every camera image as a ``CameraStreamingRequest`` (Gemini's wire order: RGB, rows bottom up; frame
+  ``camera/<name>``) and every radar
   rotation's spokes as a ``RadarStreamingRequest``.
 * :func:`record_stream` — the server (``seatwin record-stream``): writes what arrives into a ROS bag
   through :class:`~seatwin.recording.RecordingWriter`, as a Gemini/Unity simulator's ROS-side
@@ -29,7 +30,8 @@ from typing import Any
 
 import numpy as np
 
-from seatwin.api.proto import navigation_pb2, navigation_pb2_grpc, sensorstreaming_pb2, sensorstreaming_pb2_grpc
+from seatwin.api.proto import navigation_pb2, navigation_pb2_grpc, sensor_streaming_pb2, sensor_streaming_pb2_grpc
+from seatwin.api.wire import camera_bytes, image_from_wire, lidar_bytes
 from seatwin.errors import InputError, ParameterError
 from seatwin.recording.pointcloud import FLOAT32, FLOAT64, UINT32, VLP16_LAYOUT, Field, Layout, pack
 
@@ -56,13 +58,13 @@ _POINTFIELD_CONSTANTS = {"INT8": 1, "UINT8": 2, "INT16": 3, "UINT16": 4, "INT32"
 
 def lidar_request(frame_id: str, t: float, sweep: Any) -> Any:
     """A ``LidarStreamingRequest`` of one sweep (columns x, y, z, intensity, ring, time) in the Table 4.2 layout."""
-    data = pack(VLP16_LAYOUT, x=sweep.x, y=sweep.y, z=sweep.z, intensity=sweep.intensity, ring=sweep.ring, time=sweep.time)
+    data = lidar_bytes(sweep)
     n = len(data) // VLP16_LAYOUT.point_step
     fields = [
-        sensorstreaming_pb2.PointField(name=f.name, offset=f.offset, datatype=f.datatype, count=f.count, **_POINTFIELD_CONSTANTS)
+        sensor_streaming_pb2.PointField(name=f.name, offset=f.offset, datatype=f.datatype, count=f.count, **_POINTFIELD_CONSTANTS)
         for f in VLP16_LAYOUT.fields
     ]
-    return sensorstreaming_pb2.LidarStreamingRequest(
+    return sensor_streaming_pb2.LidarStreamingRequest(
         timeInSeconds=float(t),
         height=1,
         width=n,
@@ -70,24 +72,23 @@ def lidar_request(frame_id: str, t: float, sweep: Any) -> Any:
         isBigEndian=False,
         point_step=VLP16_LAYOUT.point_step,
         row_step=VLP16_LAYOUT.point_step * n,
-        data=np.ascontiguousarray(data).tobytes(),
+        data=data,
         is_dense=True,
         frame_id=frame_id,
     )
 
 
 def camera_request(frame_id: str, t: float, bgr: np.ndarray) -> Any:
-    """A ``CameraStreamingRequest`` of an H×W×3 bgr8 image, sent as rgb8 (3 bytes a pixel, rows top down)."""
-    rgb = np.ascontiguousarray(np.asarray(bgr, np.uint8)[:, :, ::-1])
-    return sensorstreaming_pb2.CameraStreamingRequest(
-        data=rgb.tobytes(), timeStamp=float(t), width=rgb.shape[1], height=rgb.shape[0], frame_id=frame_id
-    )
+    """A ``CameraStreamingRequest`` of an H×W×3 bgr8 image, in Gemini's wire order (:func:`camera_bytes`)."""
+    h, w = np.shape(bgr)[:2]
+    data = camera_bytes(bgr)
+    return sensor_streaming_pb2.CameraStreamingRequest(data=data, timeStamp=float(t), width=w, height=h, frame_id=frame_id)
 
 
 def radar_request(spokes: Any) -> Any:
     """A ``RadarStreamingRequest`` of one rotation's spokes (:class:`seatwin.sensors.radar.spokes.RadarSpokes`)."""
     d = spokes.to_request_dict()
-    return sensorstreaming_pb2.RadarStreamingRequest(
+    return sensor_streaming_pb2.RadarStreamingRequest(
         rangeIncrement=d["range_increment"],
         rangeStart=d["range_start"],
         numSamples=d["num_samples"],
@@ -100,22 +101,54 @@ def radar_request(spokes: Any) -> Any:
     )
 
 
-class SensorStreamer:
-    """A ``SensorStreaming`` client for the loop's ``on_frame`` hook; counts what it sent."""
+CONNECT_TIMEOUT_S = 5.0
+"""How long :class:`SensorStreamer` waits for its server to answer before the run starts."""
 
-    def __init__(self, address: str, timeout_s: float = 30.0):
+
+def navigation_request(t: float, pose: Any) -> Any:
+    """A ``NavigationRequest`` of one vessel's ground truth (:class:`~seatwin.recording.VesselPose`): position
+    (north, east, down) [m] in the scenario's NED frame, orientation the heading as a rotation about z (down),
+    linear velocity (v_north, v_east, 0) [m/s] in that frame, angular velocity (0, 0, yaw rate) [rad/s] —
+    what :class:`StreamRecorder` reads back."""
+    half = 0.5 * float(pose.heading)
+    return navigation_pb2.NavigationRequest(
+        timeStamp=float(t),
+        position=navigation_pb2.Vec3(x=float(pose.north), y=float(pose.east), z=float(pose.down)),
+        orientation=navigation_pb2.Quaternion(x=0.0, y=0.0, z=math.sin(half), w=math.cos(half)),
+        linearVelocity=navigation_pb2.Vec3(x=float(pose.v_north), y=float(pose.v_east), z=0.0),
+        angularVelocity=navigation_pb2.Vec3(x=0.0, y=0.0, z=float(pose.yaw_rate)),
+        vesselName=str(pose.name),
+    )
+
+
+class SensorStreamer:
+    """A ``SensorStreaming`` + ``Navigation`` client for the loop's ``on_frame`` hook; counts what it sent.
+
+    It fails at once (:class:`ParameterError`, one line) when nothing answers at ``address`` within
+    ``connect_timeout_s``; a call then waits at most ``timeout_s`` for its answer."""
+
+    def __init__(self, address: str, timeout_s: float = 30.0, connect_timeout_s: float = CONNECT_TIMEOUT_S):
         import grpc
 
-        from seatwin.api.server import GRPC_OPTIONS
+        from seatwin.api.channel import GRPC_OPTIONS
 
         if ":" not in address:
             raise ParameterError("stream", f"expected HOST:PORT, got {address!r}")
         self.address = address
         self._grpc = grpc
         self.channel = grpc.insecure_channel(address, options=GRPC_OPTIONS)
-        self.stub = sensorstreaming_pb2_grpc.SensorStreamingStub(self.channel)
+        try:
+            grpc.channel_ready_future(self.channel).result(timeout=connect_timeout_s)
+        except grpc.FutureTimeoutError:
+            self.channel.close()
+            raise ParameterError(
+                "stream",
+                f"nothing answers at {address} (waited {connect_timeout_s:g} s): is a SensorStreaming server running there?",
+            ) from None
+        self.stub = sensor_streaming_pb2_grpc.SensorStreamingStub(self.channel)
+        self.navigation = navigation_pb2_grpc.NavigationStub(self.channel)
         self.timeout_s = timeout_s
-        self.sent: dict[str, int] = {"lidar": 0, "camera": 0, "radar": 0}
+        self.sent: dict[str, int] = {"lidar": 0, "camera": 0, "radar": 0, "navigation": 0}
 
     def _send(self, call: Callable[..., Any], request: Any, kind: str) -> None:
         try:
@@ -125,8 +158,14 @@ class SensorStreamer:
         self.sent[kind] += 1
 
     def on_frame(self, sensor: Any, t: float, frame: int, data: Any) -> None:
-        """The loop's hook: stream a lidar sweep or a radar rotation's spokes (ground truth is not streamed)."""
-        if hasattr(sensor, "lidar"):  # a LidarSensor
+        """The loop's hook: stream a lidar sweep, a rig's camera images, a radar rotation's spokes, or a ground-truth
+        frame as a ``NavigationRequest`` per vessel (so a bag recorded from the stream can be tracked)."""
+        from seatwin.recording import VesselPose
+
+        if isinstance(data, list) and data and isinstance(data[0], VesselPose):  # ground truth
+            for pose in data:
+                self._send(self.navigation.SendNavigationMessage, navigation_request(t, pose), "navigation")
+        elif hasattr(sensor, "lidar"):  # a LidarSensor
             self._send(self.stub.StreamLidarSensor, lidar_request(sensor.name, t, data), "lidar")
         elif isinstance(data, list) and data and hasattr(data[0], "bgr"):  # a CameraSensor's images
             for img in data:
@@ -153,14 +192,44 @@ def heading_of_quaternion(x: float, y: float, z: float, w: float) -> float:
     return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
 
 
+def thesis_mounts(ownship: str, topics: Any) -> dict[str, Any]:
+    """The mounts ``seatwin simulate`` records for its default sensors on ``ownship`` (the thesis's milliAmpere rig:
+    the lidar upside down at its measured height, the radar, each rig camera's optical frame), by frame id as the
+    sensors stream them (``lidar``, ``radar``, ``camera/<name>``). Gemini's streaming carries no mounts."""
+    from seatwin.recording import StaticTransform
+    from seatwin.recording.messages import quaternion_from_matrix
+    from seatwin.sensors.camera.config import CameraConfig
+    from seatwin.sensors.camera.rig import rig_mounts
+    from seatwin.sensors.lidar_config import MILLIAMPERE_LIDAR_MOUNT
+    from seatwin.sensors.radar.config import RadarConfig
+    from seatwin.sim.radar import radar_mount
+
+    body = topics.body(ownship)
+    m = MILLIAMPERE_LIDAR_MOUNT
+    out = {"lidar": StaticTransform(body, "lidar", (float(m.x), float(m.y), float(m.z)), quaternion_from_matrix(m.rotation()))}
+    out["radar"] = radar_mount(RadarConfig(), ownship, "radar", topics)
+    for cam in rig_mounts(CameraConfig()):
+        out[f"camera/{cam.name}"] = StaticTransform(
+            body, f"camera/{cam.name}", cam.translation, quaternion_from_matrix(cam.rotation)
+        )
+    return out
+
+
 @dataclass
 class StreamRecorder:
-    """Writes streamed sensor data and navigation messages into a recording (thread-safe)."""
+    """Writes streamed sensor data and navigation messages into a recording (thread-safe); the first frame of a
+    sensor whose frame id has an entry in ``mounts`` also writes that mount on /tf_static."""
 
     writer: Any
     ownship: str | None = None
     counts: dict[str, int] = field(default_factory=lambda: {"lidar": 0, "camera": 0, "radar": 0, "navigation": 0})
     lock: threading.Lock = field(default_factory=threading.Lock)
+    mounts: dict[str, Any] = field(default_factory=dict)
+
+    def _mount(self, frame_id: str, t: float) -> None:
+        mount = self.mounts.pop(frame_id, None)
+        if mount is not None:
+            self.writer.write_static_transforms(t, [mount])
 
     def lidar(self, r: Any) -> None:
         layout = _layout_of(r)
@@ -171,6 +240,7 @@ class StreamRecorder:
         if len(buf) < n * layout.point_step:
             raise InputError("LidarStreamingRequest", f"data has {len(buf)} bytes, {n} points need {n * layout.point_step}")
         sensor = r.frame_id or "lidar"
+        self._mount(sensor, r.timeInSeconds)
         topic = self.writer.topics.topic("lidar", sensor=sensor)
         if layout == VLP16_LAYOUT:
             p = np.frombuffer(r.data, dtype=layout.dtype, count=n)
@@ -180,15 +250,18 @@ class StreamRecorder:
         self.counts["lidar"] += 1
 
     def camera(self, r: Any) -> None:
+        """Gemini's wire order (:func:`camera_bytes`: RGB, rows bottom up) recorded as its ROS adapter publishes
+        it: bgr8, rows top down; 1 byte a pixel: mono8, rows flipped the same way."""
         w, h = int(r.width), int(r.height)
-        if w <= 0 or h <= 0 or len(r.data) % (w * h):
-            raise InputError("CameraStreamingRequest", f"{len(r.data)} bytes are not a {w}×{h} image")
-        c = len(r.data) // (w * h)
-        enc = {1: "mono8", 3: "rgb8"}.get(c)
-        if enc is None:
-            raise InputError("CameraStreamingRequest", f"{c} bytes a pixel: expected 1 (mono8) or 3 (rgb8)")
+        if w <= 0 or h <= 0 or len(r.data) != 3 * w * h and len(r.data) != w * h:
+            expected = f"expected {3 * w * h} RGB or {w * h} mono"
+            raise InputError("CameraStreamingRequest", f"{len(r.data)} bytes are not a {w}×{h} image ({expected})")
         sensor = r.frame_id or "camera"
-        pixels = np.frombuffer(r.data, np.uint8).reshape(h, w, c)
+        self._mount(sensor, r.timeStamp)
+        if len(r.data) == w * h:
+            pixels, enc = np.ascontiguousarray(np.frombuffer(r.data, np.uint8).reshape(h, w)[::-1]), "mono8"
+        else:
+            pixels, enc = image_from_wire(r.data, w, h), "bgr8"
         self.writer.write_image(self.writer.topics.topic("camera", sensor=sensor), sensor, r.timeStamp, pixels, enc)
         self.counts["camera"] += 1
 
@@ -202,6 +275,7 @@ class StreamRecorder:
         times = np.asarray(r.timeInSeconds, np.float64) if len(r.timeInSeconds) else np.zeros(ns)
         azimuth = np.asarray(r.azimuth, np.float32) if len(r.azimuth) else np.full(ns, np.nan, np.float32)
         t = float(times[0])
+        self._mount("radar", t)
         img = np.frombuffer(r.radarSpokes, np.uint8).reshape(ns, nr)
         self.writer.write_image(SPOKES_TOPIC, "radar", t, img, "mono8")
         spokes = pack(
@@ -240,7 +314,7 @@ class StreamRecorder:
         self.counts["navigation"] += 1
 
 
-class _Servicer(sensorstreaming_pb2_grpc.SensorStreamingServicer, navigation_pb2_grpc.NavigationServicer):
+class _Servicer(sensor_streaming_pb2_grpc.SensorStreamingServicer, navigation_pb2_grpc.NavigationServicer):
     def __init__(self, recorder: StreamRecorder):
         self.rec = recorder
 
@@ -259,13 +333,13 @@ class _Servicer(sensorstreaming_pb2_grpc.SensorStreamingServicer, navigation_pb2
         return True
 
     def StreamLidarSensor(self, request: Any, context: Any) -> Any:  # noqa: N802 - Gemini's name
-        return sensorstreaming_pb2.LidarStreamingResponse(success=self._call(self.rec.lidar, request, context))
+        return sensor_streaming_pb2.LidarStreamingResponse(success=self._call(self.rec.lidar, request, context))
 
     def StreamCameraSensor(self, request: Any, context: Any) -> Any:  # noqa: N802
-        return sensorstreaming_pb2.CameraStreamingResponse(success=self._call(self.rec.camera, request, context))
+        return sensor_streaming_pb2.CameraStreamingResponse(success=self._call(self.rec.camera, request, context))
 
     def StreamRadarSensor(self, request: Any, context: Any) -> Any:  # noqa: N802
-        return sensorstreaming_pb2.RadarStreamingResponse(success=self._call(self.rec.radar, request, context))
+        return sensor_streaming_pb2.RadarStreamingResponse(success=self._call(self.rec.radar, request, context))
 
     def SendNavigationMessage(self, request: Any, context: Any) -> Any:  # noqa: N802
         return navigation_pb2.NavigationResponse(success=self._call(self.rec.navigation, request, context))
@@ -296,9 +370,18 @@ class RecorderHandle:
 
 
 def record_stream(
-    run_dir: str | Path, *, port: int = 50052, host: str = "127.0.0.1", fmt: str = "mcap", ownship: str | None = "milliAmpere"
+    run_dir: str | Path,
+    *,
+    port: int = 50052,
+    host: str = "127.0.0.1",
+    fmt: str = "mcap",
+    ownship: str | None = "milliAmpere",
+    mounts: bool = True,
 ) -> RecorderHandle:
-    """Start a ``SensorStreaming`` + ``Navigation`` server recording into the new run directory ``run_dir``."""
+    """Start a ``SensorStreaming`` + ``Navigation`` server recording into the new run directory ``run_dir``.
+
+    ``mounts``: write the thesis rig's sensor mounts (:func:`thesis_mounts`) on /tf_static as each sensor first
+    streams, so the bag can be tracked with the ``NavigationRequest``s as ownship ground truth."""
     import grpc
 
     from seatwin.api.server import STREAM_MAX_MESSAGE_BYTES, bind, check_port, server_options
@@ -312,10 +395,10 @@ def record_stream(
         raise InputError(run_dir, "a recording exists here already; choose a new run directory")
     run_dir.mkdir(parents=True, exist_ok=True)
     writer = RecordingWriter(run_dir, fmt, origin=RAVNKLOA, metadata={"recorded_by": "seatwin record-stream"})
-    recorder = StreamRecorder(writer, ownship)
+    recorder = StreamRecorder(writer, ownship, mounts=thesis_mounts(ownship, writer.topics) if mounts and ownship else {})
     server = grpc.server(futures.ThreadPoolExecutor(max_workers=8), options=server_options(STREAM_MAX_MESSAGE_BYTES))
     servicer = _Servicer(recorder)
-    sensorstreaming_pb2_grpc.add_SensorStreamingServicer_to_server(servicer, server)
+    sensor_streaming_pb2_grpc.add_SensorStreamingServicer_to_server(servicer, server)
     navigation_pb2_grpc.add_NavigationServicer_to_server(servicer, server)
     try:
         bound = bind(server, host, port)

@@ -18,11 +18,18 @@ def register(app: typer.Typer) -> None:
         host: str = typer.Option("127.0.0.1", "--host", help="Address to listen on (default loopback only)."),
         ownship: str = typer.Option("milliAmpere", "--ownship", help="Vessel whose navigation messages also give a NavSatFix."),
         fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Bag format."),
+        mounts: bool = typer.Option(
+            True,
+            "--mounts/--no-mounts",
+            help="Write the thesis rig's sensor mounts (lidar, radar, cameras) on /tf_static as each sensor first "
+            "streams (the stream carries none), so the bag can be tracked.",
+        ),
         overwrite: bool = overwrite_option(),
     ) -> None:
         """Serve sensorstreaming.SensorStreaming and navigation.Navigation; record every message into a ROS bag.
 
-        Lidar clouds → /<frame_id>/points (PointCloud2), camera images → /<frame_id>/image_raw,
+        Lidar clouds → /<frame_id>/points (PointCloud2), camera images → /<frame_id>/image_raw (Gemini sends
+        RGB rows bottom up; recorded bgr8 rows top down, as Gemini's ROS adapter publishes them),
         radar spokes → /radar/spokes (mono8, a row per spoke) with /radar/spokes/azimuth (PointCloud2, a point per
         spoke: its azimuth and time, the range start/increment), navigation → /ground_truth/<vessel>/...
         Ctrl-C or SIGTERM finishes the bag (manifest completed: true).
@@ -34,7 +41,7 @@ def register(app: typer.Typer) -> None:
 
         remove_outputs(check_new_run(out, "out", overwrite=overwrite))
         with interrupts_set_event() as stop:  # before the address is announced: a signal right after it finishes the bag
-            handle = record_stream(out, port=port, host=host, fmt=fmt.value, ownship=ownship)
+            handle = record_stream(out, port=port, host=host, fmt=fmt.value, ownship=ownship, mounts=mounts)
             typer.echo(f"serving SensorStreaming + Navigation on {handle.address}; recording into {out} (Ctrl-C to finish)")
             try:
                 wait(stop)

@@ -99,7 +99,7 @@ def register(app: typer.Typer) -> None:
                 lidar_preset=lidar_preset,
                 fmt=fmt.value,
                 harbour=harbour,
-                radar_spokes=streamer is not None,
+                radar_spokes=True,  # a rotation's spokes: streamed, and served by Sensordata
                 on_frame=streamer.on_frame if streamer is not None else None,
                 interrupt=stop,
                 max_step_s=max_step,
@@ -107,7 +107,10 @@ def register(app: typer.Typer) -> None:
             )
             if viewer is not None:
                 viewer.attach(handle.sim.writer)  # before the address is announced: no step has run yet
-            typer.echo(f"serving GeminiOSPInterface.Simulation on {handle.address}; recording into {out} (Ctrl-C to finish)")
+            typer.echo(
+                f"serving GeminiOSPInterface.Simulation (and ForceControl, Sensordata, SensorManagement) on {handle.address}; "
+                f"recording into {out} (Ctrl-C to finish)"
+            )
             try:
                 wait(stop)
             finally:

@@ -79,7 +79,10 @@ def register(app: typer.Typer) -> None:
         progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar (lines on a pipe)."),
         quiet: bool = typer.Option(False, "--quiet", "-q", hidden=True, help="Old spelling of --no-progress."),
         stream: str | None = typer.Option(
-            None, "--stream", metavar="HOST:PORT", help="Also stream lidar clouds and radar spokes to a SensorStreaming server."
+            None,
+            "--stream",
+            metavar="HOST:PORT",
+            help="Also stream lidar clouds, camera images, radar spokes and navigation to a SensorStreaming server.",
         ),
         live: bool = typer.Option(
             False, "--live", help="Serve the run to Foxglove (WebSocket, see `seatwin view`) while it is made."
@@ -96,15 +99,15 @@ def register(app: typer.Typer) -> None:
         /radar/detections (with --sensors lidar,radar), /camera/{left,front,right}/image_raw|camera_info|labels
         (camera: on by default), /ground_truth/<vessel>/pose|odom|fix, /tf, /tf_static.
         """
+        streamer = None
+        if stream:  # first: nothing listening there fails in seconds, before the simulator is imported
+            from seatwin.api.streaming import SensorStreamer
+
+            streamer = SensorStreamer(stream)
         from seatwin.cli.output import split_list
         from seatwin.cli.scenario import _date
         from seatwin.pipeline.simulate import simulate_run
 
-        streamer = None
-        if stream:
-            from seatwin.api.streaming import SensorStreamer
-
-            streamer = SensorStreamer(stream)
         viewer = start_live(live_port, live_speed, fmt.value) if live else None
         try:
             result = simulate_run(

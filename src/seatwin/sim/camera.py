@@ -31,7 +31,7 @@ from seatwin.sensors.camera.config import CameraConfig
 from seatwin.sensors.camera.intrinsics import source_pixels
 from seatwin.sensors.camera.labels import BoxLabel, ground_truth_boxes
 from seatwin.sensors.camera.rig import camera_info_fields, rig_mounts
-from seatwin.sim.timing import periodic_times
+from seatwin.sim.timing import periodic_times, periodic_times_from
 
 
 @dataclass
@@ -123,6 +123,9 @@ class CameraSensor:
 
     def frame_times(self, t0: float, t1: float) -> NDArray[np.float64]:
         return periodic_times(t0, t1, self.rate_hz, self.phase_s)
+
+    def frame_times_from(self, t0: float, t1: float, first: int) -> NDArray[np.float64]:
+        return periodic_times_from(t0, t1, self.rate_hz, self.phase_s, first)
 
     def static_transforms(self, topics: TopicConfig) -> list[StaticTransform]:
         return [

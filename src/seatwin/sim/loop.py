@@ -26,6 +26,16 @@ from seatwin.interrupts import deferred_interrupts, interrupts_raise
 from seatwin.sim.sensors import SimSensor
 
 
+class _NotRendered:
+    def __repr__(self) -> str:
+        return "NOT_RENDERED"
+
+
+NOT_RENDERED: Any = _NotRendered()
+"""What a sensor's ``capture`` returns for a frame it does not make (its rendering stopped, as Gemini's
+``SensorManagement.StopRendering``): the stepper moves past the frame without recording it."""
+
+
 class StepInterrupted(Exception):
     """:meth:`Stepper.advance_to` stopped between two frames because its ``interrupt`` event was set."""
 
@@ -97,19 +107,28 @@ class Stepper:
         wall0: float = 0.0,
         interrupt: threading.Event | None = None,
     ) -> int:
-        """Run (capture, record, ``on_frame``) every frame in [horizon, t1) in time order; return how many.
+        """Run (capture, record, ``on_frame``) every frame before ``t1`` not run yet, in time order; return how many.
+
+        Each sensor's frames come from ``frame_times`` on the first increment and, after, from its
+        ``frame_times_from(t0, t1, first)`` when it has one (only the frames from ``first`` on), so a
+        lock-step increment costs the same after an hour as at the start. A sensor may return
+        :data:`NOT_RENDERED` from ``capture``: the frame is passed over, not recorded.
 
         ``advance(simulated_s, wall_s)`` is called after each frame (progress). A frame is recorded
         whole: Ctrl-C/SIGTERM during its recording takes effect after it. ``interrupt`` set (by
         another thread) stops the loop before the next frame with :class:`StepInterrupted`; the
         frames not run stay due.
         """
-        if t1 <= self.horizon:
-            return 0
         events = []
         for i, s in enumerate(self.sensors):
-            times = s.frame_times(self.t0, t1)
-            events.extend((float(times[k]), i, k) for k in range(self._next[i], len(times)))
+            first = self._next[i]
+            tail = getattr(s, "frame_times_from", None) if first else None
+            if tail is None:  # the first increment (all of simulate's run): frame_times, which may prepare the frames
+                times = s.frame_times(self.t0, t1)
+                events.extend((float(times[k]), i, k) for k in range(first, len(times)))
+            else:  # later increments: only the frames not run yet, at a cost independent of how many ran
+                times = tail(self.t0, t1, first)
+                events.extend((float(times[j]), i, first + j) for j in range(len(times)))
         heapq.heapify(events)
         n = 0
         while events:
@@ -118,6 +137,9 @@ class Stepper:
             t, i, k = heapq.heappop(events)
             sensor = self.sensors[i]
             data = sensor.capture(t, k)
+            if data is NOT_RENDERED:
+                self._next[i] = k + 1
+                continue
             with deferred_interrupts(), self.writer.frame():
                 sensor.record(self.writer, t, data)
                 self._next[i] = k + 1
@@ -128,7 +150,7 @@ class Stepper:
                 self.on_frame(sensor, t, k, data)
             if advance is not None:
                 advance(t - self.t0, _time.perf_counter() - wall0)
-        self.horizon = float(t1)
+        self.horizon = max(self.horizon, float(t1))
         return n
 
 

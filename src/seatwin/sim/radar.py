@@ -20,7 +20,7 @@ from seatwin.recording import RecordingWriter, StaticTransform, TopicConfig
 from seatwin.recording.tf_tree import sensor_mount
 from seatwin.sensors.radar.config import RadarConfig
 from seatwin.sensors.radar.model import RadarModel, RadarScan
-from seatwin.sim.timing import TIME_EPS_S, periodic_times
+from seatwin.sim.timing import TIME_EPS_S, periodic_times, periodic_times_from
 
 
 def radar_mount(config: RadarConfig, ownship: str, sensor: str, topics: TopicConfig) -> list[StaticTransform]:
@@ -87,6 +87,12 @@ class RadarSensor:
             return periodic_times(t0, t1, self.rate_hz, self.phase_s)
         rel = self.times - float(t0)
         return self.times[(rel >= -TIME_EPS_S) & (rel < float(t1) - float(t0) - TIME_EPS_S)]
+
+    def frame_times_from(self, t0: float, t1: float, first: int) -> NDArray[np.float64]:
+        """``frame_times(t0, t1)[first:]``; periodic rotations at a cost independent of ``first``."""
+        if self.times is None:
+            return periodic_times_from(t0, t1, self.rate_hz, self.phase_s, first)
+        return self.frame_times(t0, t1)[first:]
 
     def static_transforms(self, topics: TopicConfig) -> list[StaticTransform]:
         return radar_mount(self.model.config, self.ownship, self.name, topics)

@@ -20,7 +20,7 @@ from seatwin.scenario import Scenario
 from seatwin.sensors.lidar import Lidar
 from seatwin.sensors.lidar_config import LidarMount
 from seatwin.sim.poses import PoseTable, poses_from_scenario
-from seatwin.sim.timing import periodic_times
+from seatwin.sim.timing import periodic_times, periodic_times_from
 
 
 class SimSensor(Protocol):
@@ -55,6 +55,10 @@ class Periodic:
 
     def frame_times(self, t0: float, t1: float) -> NDArray[np.float64]:
         return periodic_times(t0, t1, self.rate_hz, self.phase_s)
+
+    def frame_times_from(self, t0: float, t1: float, first: int) -> NDArray[np.float64]:
+        """``frame_times(t0, t1)[first:]`` at a cost independent of ``first`` (the stepper's later increments)."""
+        return periodic_times_from(t0, t1, self.rate_hz, self.phase_s, first)
 
 
 class GroundTruthSensor(Periodic):

@@ -20,6 +20,23 @@ def periodic_times(t0: float, t1: float, rate_hz: float, phase_s: float = 0.0) -
     return float(t0) + rel[(rel >= 0) & (rel < span - TIME_EPS_S)]
 
 
+def periodic_times_from(t0: float, t1: float, rate_hz: float, phase_s: float, first: int) -> NDArray[np.float64]:
+    """``periodic_times(t0, t1, rate_hz, phase_s)[first:]`` computed without the frames before ``first``: the same
+    values bit for bit, at a cost that does not grow with ``first`` (a lock-step server's later steps)."""
+    if not rate_hz > 0:
+        raise ParameterError("rate_hz", f"a sensor needs a positive rate, got {rate_hz!r}")
+    span = float(t1) - float(t0)
+    if phase_s >= 0 and not phase_s + int(first) / rate_hz < span - TIME_EPS_S:  # the usual lock-step case: none due
+        return np.empty(0)  # (the same arithmetic as below, on one element)
+    dropped = 0  # leading frames of a negative phase, before t0: not frames
+    if phase_s < 0:
+        head = phase_s + np.arange(int(np.ceil(-phase_s * rate_hz)) + 2) / rate_hz
+        dropped = int(np.count_nonzero(head < 0))
+    n = max(0, int(np.ceil((span - phase_s) * rate_hz)) + 1)
+    rel = phase_s + np.arange(min(int(first) + dropped, n), n) / rate_hz
+    return float(t0) + rel[(rel >= 0) & (rel < span - TIME_EPS_S)]
+
+
 def time_window(scenario_start: float, scenario_end: float, start: float | None, duration: float | None) -> tuple[float, float]:
     """The simulated interval [t0, t1) from POSIX ``start`` (default: the scenario's) for ``duration`` seconds.
 

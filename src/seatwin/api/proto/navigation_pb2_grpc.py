@@ -3,7 +3,7 @@
 import grpc
 import warnings
 
-from seatwin.api.proto import navigation_pb2 as seatwin_dot_api_dot_proto_dot_navigation__pb2
+from seatwin.api.proto import navigation_pb2 as navigation__pb2
 
 GRPC_GENERATED_VERSION = '1.85.1'
 GRPC_VERSION = grpc.__version__
@@ -18,7 +18,7 @@ except ImportError:
 if _version_not_supported:
     raise RuntimeError(
         f'The grpc package installed is at version {GRPC_VERSION},'
-        + ' but the generated code in seatwin/api/proto/navigation_pb2_grpc.py depends on'
+        + ' but the generated code in navigation_pb2_grpc.py depends on'
         + f' grpcio>={GRPC_GENERATED_VERSION}.'
         + f' Please upgrade your grpc module to grpcio>={GRPC_GENERATED_VERSION}'
         + f' or downgrade your generated code using grpcio-tools<={GRPC_VERSION}.'
@@ -36,8 +36,8 @@ class NavigationStub:
         """
         self.SendNavigationMessage = channel.unary_unary(
                 '/navigation.Navigation/SendNavigationMessage',
-                request_serializer=seatwin_dot_api_dot_proto_dot_navigation__pb2.NavigationRequest.SerializeToString,
-                response_deserializer=seatwin_dot_api_dot_proto_dot_navigation__pb2.NavigationResponse.FromString,
+                request_serializer=navigation__pb2.NavigationRequest.SerializeToString,
+                response_deserializer=navigation__pb2.NavigationResponse.FromString,
                 _registered_method=True)
 
 
@@ -55,8 +55,8 @@ def add_NavigationServicer_to_server(servicer, server):
     rpc_method_handlers = {
             'SendNavigationMessage': grpc.unary_unary_rpc_method_handler(
                     servicer.SendNavigationMessage,
-                    request_deserializer=seatwin_dot_api_dot_proto_dot_navigation__pb2.NavigationRequest.FromString,
-                    response_serializer=seatwin_dot_api_dot_proto_dot_navigation__pb2.NavigationResponse.SerializeToString,
+                    request_deserializer=navigation__pb2.NavigationRequest.FromString,
+                    response_serializer=navigation__pb2.NavigationResponse.SerializeToString,
             ),
     }
     generic_handler = grpc.method_handlers_generic_handler(
@@ -84,8 +84,8 @@ class Navigation:
             request,
             target,
             '/navigation.Navigation/SendNavigationMessage',
-            seatwin_dot_api_dot_proto_dot_navigation__pb2.NavigationRequest.SerializeToString,
-            seatwin_dot_api_dot_proto_dot_navigation__pb2.NavigationResponse.FromString,
+            navigation__pb2.NavigationRequest.SerializeToString,
+            navigation__pb2.NavigationResponse.FromString,
             options,
             channel_credentials,
             insecure,

@@ -3,7 +3,7 @@
 import grpc
 import warnings
 
-from seatwin.api.proto import sensorstreaming_pb2 as seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2
+from seatwin.api.proto import sensor_streaming_pb2 as sensor__streaming__pb2
 
 GRPC_GENERATED_VERSION = '1.85.1'
 GRPC_VERSION = grpc.__version__
@@ -18,7 +18,7 @@ except ImportError:
 if _version_not_supported:
     raise RuntimeError(
         f'The grpc package installed is at version {GRPC_VERSION},'
-        + ' but the generated code in seatwin/api/proto/sensorstreaming_pb2_grpc.py depends on'
+        + ' but the generated code in sensor_streaming_pb2_grpc.py depends on'
         + f' grpcio>={GRPC_GENERATED_VERSION}.'
         + f' Please upgrade your grpc module to grpcio>={GRPC_GENERATED_VERSION}'
         + f' or downgrade your generated code using grpcio-tools<={GRPC_VERSION}.'
@@ -36,18 +36,18 @@ class SensorStreamingStub:
         """
         self.StreamCameraSensor = channel.unary_unary(
                 '/sensorstreaming.SensorStreaming/StreamCameraSensor',
-                request_serializer=seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2.CameraStreamingRequest.SerializeToString,
-                response_deserializer=seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2.CameraStreamingResponse.FromString,
+                request_serializer=sensor__streaming__pb2.CameraStreamingRequest.SerializeToString,
+                response_deserializer=sensor__streaming__pb2.CameraStreamingResponse.FromString,
                 _registered_method=True)
         self.StreamLidarSensor = channel.unary_unary(
                 '/sensorstreaming.SensorStreaming/StreamLidarSensor',
-                request_serializer=seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2.LidarStreamingRequest.SerializeToString,
-                response_deserializer=seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2.LidarStreamingResponse.FromString,
+                request_serializer=sensor__streaming__pb2.LidarStreamingRequest.SerializeToString,
+                response_deserializer=sensor__streaming__pb2.LidarStreamingResponse.FromString,
                 _registered_method=True)
         self.StreamRadarSensor = channel.unary_unary(
                 '/sensorstreaming.SensorStreaming/StreamRadarSensor',
-                request_serializer=seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2.RadarStreamingRequest.SerializeToString,
-                response_deserializer=seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2.RadarStreamingResponse.FromString,
+                request_serializer=sensor__streaming__pb2.RadarStreamingRequest.SerializeToString,
+                response_deserializer=sensor__streaming__pb2.RadarStreamingResponse.FromString,
                 _registered_method=True)
 
 
@@ -77,18 +77,18 @@ def add_SensorStreamingServicer_to_server(servicer, server):
     rpc_method_handlers = {
             'StreamCameraSensor': grpc.unary_unary_rpc_method_handler(
                     servicer.StreamCameraSensor,
-                    request_deserializer=seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2.CameraStreamingRequest.FromString,
-                    response_serializer=seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2.CameraStreamingResponse.SerializeToString,
+                    request_deserializer=sensor__streaming__pb2.CameraStreamingRequest.FromString,
+                    response_serializer=sensor__streaming__pb2.CameraStreamingResponse.SerializeToString,
             ),
             'StreamLidarSensor': grpc.unary_unary_rpc_method_handler(
                     servicer.StreamLidarSensor,
-                    request_deserializer=seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2.LidarStreamingRequest.FromString,
-                    response_serializer=seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2.LidarStreamingResponse.SerializeToString,
+                    request_deserializer=sensor__streaming__pb2.LidarStreamingRequest.FromString,
+                    response_serializer=sensor__streaming__pb2.LidarStreamingResponse.SerializeToString,
             ),
             'StreamRadarSensor': grpc.unary_unary_rpc_method_handler(
                     servicer.StreamRadarSensor,
-                    request_deserializer=seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2.RadarStreamingRequest.FromString,
-                    response_serializer=seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2.RadarStreamingResponse.SerializeToString,
+                    request_deserializer=sensor__streaming__pb2.RadarStreamingRequest.FromString,
+                    response_serializer=sensor__streaming__pb2.RadarStreamingResponse.SerializeToString,
             ),
     }
     generic_handler = grpc.method_handlers_generic_handler(
@@ -116,8 +116,8 @@ class SensorStreaming:
             request,
             target,
             '/sensorstreaming.SensorStreaming/StreamCameraSensor',
-            seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2.CameraStreamingRequest.SerializeToString,
-            seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2.CameraStreamingResponse.FromString,
+            sensor__streaming__pb2.CameraStreamingRequest.SerializeToString,
+            sensor__streaming__pb2.CameraStreamingResponse.FromString,
             options,
             channel_credentials,
             insecure,
@@ -143,8 +143,8 @@ class SensorStreaming:
             request,
             target,
             '/sensorstreaming.SensorStreaming/StreamLidarSensor',
-            seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2.LidarStreamingRequest.SerializeToString,
-            seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2.LidarStreamingResponse.FromString,
+            sensor__streaming__pb2.LidarStreamingRequest.SerializeToString,
+            sensor__streaming__pb2.LidarStreamingResponse.FromString,
             options,
             channel_credentials,
             insecure,
@@ -170,8 +170,8 @@ class SensorStreaming:
             request,
             target,
             '/sensorstreaming.SensorStreaming/StreamRadarSensor',
-            seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2.RadarStreamingRequest.SerializeToString,
-            seatwin_dot_api_dot_proto_dot_sensorstreaming__pb2.RadarStreamingResponse.FromString,
+            sensor__streaming__pb2.RadarStreamingRequest.SerializeToString,
+            sensor__streaming__pb2.RadarStreamingResponse.FromString,
             options,
             channel_credentials,
             insecure,

@@ -3,7 +3,7 @@
 import grpc
 import warnings
 
-from seatwin.api.proto import gemini_osp_pb2 as seatwin_dot_api_dot_proto_dot_gemini__osp__pb2
+from seatwin.api.proto import sensordata_pb2 as sensordata__pb2
 
 GRPC_GENERATED_VERSION = '1.85.1'
 GRPC_VERSION = grpc.__version__
@@ -18,14 +18,14 @@ except ImportError:
 if _version_not_supported:
     raise RuntimeError(
         f'The grpc package installed is at version {GRPC_VERSION},'
-        + ' but the generated code in seatwin/api/proto/gemini_osp_pb2_grpc.py depends on'
+        + ' but the generated code in sensordata_pb2_grpc.py depends on'
         + f' grpcio>={GRPC_GENERATED_VERSION}.'
         + f' Please upgrade your grpc module to grpcio>={GRPC_GENERATED_VERSION}'
         + f' or downgrade your generated code using grpcio-tools<={GRPC_VERSION}.'
     )
 
 
-class SimulationStub:
+class SensordataStub:
     """Missing associated documentation comment in .proto file."""
 
     def __init__(self, channel):
@@ -34,59 +34,59 @@ class SimulationStub:
         Args:
             channel: A grpc.Channel.
         """
-        self.DoStep = channel.unary_unary(
-                '/GeminiOSPInterface.Simulation/DoStep',
-                request_serializer=seatwin_dot_api_dot_proto_dot_gemini__osp__pb2.StepRequest.SerializeToString,
-                response_deserializer=seatwin_dot_api_dot_proto_dot_gemini__osp__pb2.StepResponse.FromString,
+        self.TransferSensordata = channel.unary_unary(
+                '/sensordata.Sensordata/TransferSensordata',
+                request_serializer=sensordata__pb2.SensordataRequest.SerializeToString,
+                response_deserializer=sensordata__pb2.SensordataResponse.FromString,
                 _registered_method=True)
-        self.SetStartTime = channel.unary_unary(
-                '/GeminiOSPInterface.Simulation/SetStartTime',
-                request_serializer=seatwin_dot_api_dot_proto_dot_gemini__osp__pb2.SetStartTimeRequest.SerializeToString,
-                response_deserializer=seatwin_dot_api_dot_proto_dot_gemini__osp__pb2.SetStartTimeResponse.FromString,
+        self.StreamSensordata = channel.unary_stream(
+                '/sensordata.Sensordata/StreamSensordata',
+                request_serializer=sensordata__pb2.SensordataRequest.SerializeToString,
+                response_deserializer=sensordata__pb2.SensordataResponse.FromString,
                 _registered_method=True)
 
 
-class SimulationServicer:
+class SensordataServicer:
     """Missing associated documentation comment in .proto file."""
 
-    def DoStep(self, request, context):
+    def TransferSensordata(self, request, context):
         """Missing associated documentation comment in .proto file."""
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
         raise NotImplementedError('Method not implemented!')
 
-    def SetStartTime(self, request, context):
+    def StreamSensordata(self, request, context):
         """Missing associated documentation comment in .proto file."""
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
         raise NotImplementedError('Method not implemented!')
 
 
-def add_SimulationServicer_to_server(servicer, server):
+def add_SensordataServicer_to_server(servicer, server):
     rpc_method_handlers = {
-            'DoStep': grpc.unary_unary_rpc_method_handler(
-                    servicer.DoStep,
-                    request_deserializer=seatwin_dot_api_dot_proto_dot_gemini__osp__pb2.StepRequest.FromString,
-                    response_serializer=seatwin_dot_api_dot_proto_dot_gemini__osp__pb2.StepResponse.SerializeToString,
+            'TransferSensordata': grpc.unary_unary_rpc_method_handler(
+                    servicer.TransferSensordata,
+                    request_deserializer=sensordata__pb2.SensordataRequest.FromString,
+                    response_serializer=sensordata__pb2.SensordataResponse.SerializeToString,
             ),
-            'SetStartTime': grpc.unary_unary_rpc_method_handler(
-                    servicer.SetStartTime,
-                    request_deserializer=seatwin_dot_api_dot_proto_dot_gemini__osp__pb2.SetStartTimeRequest.FromString,
-                    response_serializer=seatwin_dot_api_dot_proto_dot_gemini__osp__pb2.SetStartTimeResponse.SerializeToString,
+            'StreamSensordata': grpc.unary_stream_rpc_method_handler(
+                    servicer.StreamSensordata,
+                    request_deserializer=sensordata__pb2.SensordataRequest.FromString,
+                    response_serializer=sensordata__pb2.SensordataResponse.SerializeToString,
             ),
     }
     generic_handler = grpc.method_handlers_generic_handler(
-            'GeminiOSPInterface.Simulation', rpc_method_handlers)
+            'sensordata.Sensordata', rpc_method_handlers)
     server.add_generic_rpc_handlers((generic_handler,))
-    server.add_registered_method_handlers('GeminiOSPInterface.Simulation', rpc_method_handlers)
+    server.add_registered_method_handlers('sensordata.Sensordata', rpc_method_handlers)
 
 
  # This class is part of an EXPERIMENTAL API.
-class Simulation:
+class Sensordata:
     """Missing associated documentation comment in .proto file."""
 
     @staticmethod
-    def DoStep(request,
+    def TransferSensordata(request,
             target,
             options=(),
             channel_credentials=None,
@@ -99,9 +99,9 @@ class Simulation:
         return grpc.experimental.unary_unary(
             request,
             target,
-            '/GeminiOSPInterface.Simulation/DoStep',
-            seatwin_dot_api_dot_proto_dot_gemini__osp__pb2.StepRequest.SerializeToString,
-            seatwin_dot_api_dot_proto_dot_gemini__osp__pb2.StepResponse.FromString,
+            '/sensordata.Sensordata/TransferSensordata',
+            sensordata__pb2.SensordataRequest.SerializeToString,
+            sensordata__pb2.SensordataResponse.FromString,
             options,
             channel_credentials,
             insecure,
@@ -113,7 +113,7 @@ class Simulation:
             _registered_method=True)
 
     @staticmethod
-    def SetStartTime(request,
+    def StreamSensordata(request,
             target,
             options=(),
             channel_credentials=None,
@@ -123,12 +123,12 @@ class Simulation:
             wait_for_ready=None,
             timeout=None,
             metadata=None):
-        return grpc.experimental.unary_unary(
+        return grpc.experimental.unary_stream(
             request,
             target,
-            '/GeminiOSPInterface.Simulation/SetStartTime',
-            seatwin_dot_api_dot_proto_dot_gemini__osp__pb2.SetStartTimeRequest.SerializeToString,
-            seatwin_dot_api_dot_proto_dot_gemini__osp__pb2.SetStartTimeResponse.FromString,
+            '/sensordata.Sensordata/StreamSensordata',
+            sensordata__pb2.SensordataRequest.SerializeToString,
+            sensordata__pb2.SensordataResponse.FromString,
             options,
             channel_credentials,
             insecure,
