@@ -192,26 +192,23 @@ def heading_of_quaternion(x: float, y: float, z: float, w: float) -> float:
     return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
 
 
-def thesis_mounts(ownship: str, topics: Any) -> dict[str, Any]:
+def thesis_mounts(ownship: str, topics: Any) -> dict[str, list[Any]]:
     """The mounts ``seatwin simulate`` records for its default sensors on ``ownship`` (the thesis's milliAmpere rig:
     the lidar upside down at its measured height, the radar, each rig camera's optical frame), by frame id as the
-    sensors stream them (``lidar``, ``radar``, ``camera/<name>``). Gemini's streaming carries no mounts."""
-    from seatwin.recording import StaticTransform
-    from seatwin.recording.messages import quaternion_from_matrix
+    sensors stream them (``lidar``, ``radar``, ``camera/<name>``), each hung on ``{ownship}/base_link`` as
+    :func:`~seatwin.recording.tf_tree.sensor_mount` does for a simulated run. Gemini's streaming carries no mounts."""
+    from seatwin.recording.tf_tree import sensor_mount
     from seatwin.sensors.camera.config import CameraConfig
     from seatwin.sensors.camera.rig import rig_mounts
     from seatwin.sensors.lidar_config import MILLIAMPERE_LIDAR_MOUNT
     from seatwin.sensors.radar.config import RadarConfig
     from seatwin.sim.radar import radar_mount
 
-    body = topics.body(ownship)
     m = MILLIAMPERE_LIDAR_MOUNT
-    out = {"lidar": StaticTransform(body, "lidar", (float(m.x), float(m.y), float(m.z)), quaternion_from_matrix(m.rotation()))}
-    out["radar"] = radar_mount(RadarConfig(), ownship, "radar", topics)
+    out = {"lidar": sensor_mount(topics, ownship, "lidar", (m.x, m.y, m.z), m.rotation(), math.radians(m.roll_deg))}
+    out["radar"] = radar_mount(RadarConfig(), ownship, "radar", topics, frame_id="radar")
     for cam in rig_mounts(CameraConfig()):
-        out[f"camera/{cam.name}"] = StaticTransform(
-            body, f"camera/{cam.name}", cam.translation, quaternion_from_matrix(cam.rotation)
-        )
+        out[f"camera/{cam.name}"] = sensor_mount(topics, ownship, f"camera/{cam.name}", cam.translation, cam.rotation)
     return out
 
 
@@ -224,12 +221,12 @@ class StreamRecorder:
     ownship: str | None = None
     counts: dict[str, int] = field(default_factory=lambda: {"lidar": 0, "camera": 0, "radar": 0, "navigation": 0})
     lock: threading.Lock = field(default_factory=threading.Lock)
-    mounts: dict[str, Any] = field(default_factory=dict)
+    mounts: dict[str, list[Any]] = field(default_factory=dict)
 
     def _mount(self, frame_id: str, t: float) -> None:
         mount = self.mounts.pop(frame_id, None)
-        if mount is not None:
-            self.writer.write_static_transforms(t, [mount])
+        if mount:
+            self.writer.write_static_transforms(t, mount)
 
     def lidar(self, r: Any) -> None:
         layout = _layout_of(r)

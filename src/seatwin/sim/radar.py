@@ -23,10 +23,14 @@ from seatwin.sensors.radar.model import RadarModel, RadarScan
 from seatwin.sim.timing import TIME_EPS_S, periodic_times, periodic_times_from
 
 
-def radar_mount(config: RadarConfig, ownship: str, sensor: str, topics: TopicConfig) -> list[StaticTransform]:
-    """The /tf_static mount of the radar frame (``{ownship}/{sensor}``, FLU at the antenna) on the ownship's ``base_link``."""
+def radar_mount(
+    config: RadarConfig, ownship: str, sensor: str, topics: TopicConfig, frame_id: str | None = None
+) -> list[StaticTransform]:
+    """The /tf_static mount of the radar frame (``{ownship}/{sensor}``, or ``frame_id`` where the data names its own,
+    FLU at the antenna) on the ownship's ``base_link``."""
     translation = (config.mount_x_m, config.mount_y_m, -config.antenna_height_m)
-    return sensor_mount(topics, ownship, topics.sensor(ownship, sensor), translation, mount_matrix("flu"))
+    frame = frame_id if frame_id is not None else topics.sensor(ownship, sensor)
+    return sensor_mount(topics, ownship, frame, translation, mount_matrix("flu"))
 
 
 def write_scan(
