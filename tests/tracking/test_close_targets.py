@@ -64,3 +64,13 @@ def test_one_boat_starts_no_duplicate_track(seed: int) -> None:
 def test_thesis_rule_is_the_exclusion_gate_alone() -> None:
     assert load_tuning("real-thesis").init_association_max is None
     assert load_tuning("real").init_association_max == 0.5
+
+
+def test_a_track_born_inside_another_tracks_gate_starts_with_less_existence() -> None:
+    """Births are weighted by the probability that neither plot is an existing track's: 1 far from every track (the
+    thesis's initial existence), below it for the second boat's first track."""
+    cfg = load_tuning("real")
+    tab = JIPDATracker(cfg).run(_two_boats(20.0, 1))
+    first = {int(k): float(r) for k, r in zip(tab.track_id[::-1], tab.existence[::-1])}  # each track's first row
+    assert first[1] == cfg.initial_existence
+    assert len(first) >= 2 and all(0.0 < r < cfg.initial_existence for k, r in first.items() if k != 1)
