@@ -259,17 +259,19 @@ class JIPDATracker:
     def _explained(
         self, r: Array, d2: Array, log_norm: Array, lam: Array, dim: int, tuning: SensorTuning, beta: Array | None = None
     ) -> Array:
-        """How far existing tracks leave each measurement unexplained, so that they start no new track (thesis 5.1.3: only
-        unassociated measurements do). ``d2`` (T, M) squared Mahalanobis distances, ``log_norm`` (T,) the
+        """(M,) each measurement's weight for initiation (thesis 5.1.3: only unassociated measurements start tracks):
+        0 where existing tracks explain it (it starts nothing), else the probability that no existing track produced
+        it (1 outside every track's exclusion gate). ``d2`` (T, M) squared Mahalanobis distances, ``log_norm`` (T,) the
         Gaussians' log normalisers, ``lam`` (M,) clutter densities; ``beta``: the JIPDA marginals when the
         validation gate is the exclusion gate (then reused).
 
         A measurement outside every track's exclusion gate is free. Inside one, with ``init_association_max``
         null (the thesis's rule) it is explained; otherwise it is explained when the JIPDA posterior probability
-        that an existing track produced it, Σ_t β_tj with the marginals solved over the exclusion gate, is at least
-        ``init_association_max``. A track takes at most one measurement a scan, so of two plots in one gate that
-        one track cannot both explain (a second boat 20 m away), the less likely one stays free to start a track,
-        whereas a track's own detection, alone in its gate, is explained whatever its distance inside the gate.
+        that an existing track produced it, Σ_t β_tj with the marginals solved over the exclusion gate, is at
+        least ``init_association_max``, and free with weight 1 − Σ_t β_tj below it. A track takes at most one
+        measurement a scan, so of two plots in one gate that one track cannot both explain (a second boat 20 m
+        away), the less likely one stays free to start a track, whereas a track's own detection, alone in its
+        gate, is explained whatever its distance inside the gate.
         """
         c = self.config
         inside = d2 < self._excl[dim]
