@@ -55,7 +55,7 @@ def test_two_boats_20_m_apart_both_get_confirmed_tracks(tracker, seed: int) -> N
 
 @pytest.mark.parametrize("seed", [1, 2, 3])
 def test_one_boat_starts_no_duplicate_track(seed: int) -> None:
-    """A track's own detections, alone in its gate, are explained wherever they fall inside the exclusion gate."""
+    """A track's own detections, alone in its gate, are explained: one boat, one track."""
     scans = _two_boats(20.0, seed, second_from=10**6)
     tab = JIPDATracker(load_tuning("real")).run(scans)
     assert len(np.unique(tab.track_id)) == 1 and tab.confirmed[-1]

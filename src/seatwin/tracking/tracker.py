@@ -271,7 +271,7 @@ class JIPDATracker:
         least ``init_association_max``, and free with weight 1 − Σ_t β_tj below it. A track takes at most one
         measurement a scan, so of two plots in one gate that one track cannot both explain (a second boat 20 m
         away), the less likely one stays free to start a track, whereas a track's own detection, alone in its
-        gate, is explained whatever its distance inside the gate.
+        gate, is explained unless it lies so far out that its likelihood is down to the clutter density's.
         """
         c = self.config
         inside = d2 < self._excl[dim]
