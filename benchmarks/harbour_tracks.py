@@ -10,7 +10,8 @@ truth (``seatwin evaluate``, 10 m). Per scenario and sensor:
 
 * ``confirmed``: distinct confirmed tracks;
 * ``false`` / ``false_per_min``: confirmed tracks never associated with a target (tracks of nothing),
-  and per simulated minute;
+  and per simulated minute; ``moored``: confirmed tracks of the harbour's moored boats (real objects without
+  ground truth: don't-care, not false; :func:`seatwin.evaluation.evaluate.false_tracks`);
 * ``land_any`` / ``land_20``: confirmed tracks with any / at least 20 % of their confirmed rows on
   land (the run's water mask, not dilated);
 * ``fast``: confirmed tracks faster than the tuning's v_max + speed_gate_margin for more than 3
@@ -90,6 +91,7 @@ def scenario_row(csv: Path, sensor: str, duration: float | None, tmp: Path) -> d
         **{k: fig[k] for k in ("confirmed",)},
         "false": n_false,
         "false_per_min": round(n_false / minutes, 2),
+        "moored": ev.false_tracks.n_dont_care if ev.false_tracks else 0,
         **{k: fig[k] for k in ("land_any", "land_20", "fast")},
         "coverage": round(float(np.mean(cov)), 3) if cov else None,
         "coverage_by_target": {s.target: None if s.coverage is None else round(s.coverage, 3) for s in ev.summaries},
@@ -174,7 +176,7 @@ def main(data: Path, duration: float | None, skip_scenarios: bool = False) -> di
             minutes = sum(r["minutes"] for r in rows)
             totals[sensor] = {
                 "minutes": round(minutes, 2),
-                **{k: sum(r[k] for r in rows) for k in ("confirmed", "false", "land_any", "land_20", "fast")},
+                **{k: sum(r[k] for r in rows) for k in ("confirmed", "false", "moored", "land_any", "land_20", "fast")},
                 "false_per_min": round(sum(r["false"] for r in rows) / minutes, 2),
             }
     rav = out["ravnkloa"]

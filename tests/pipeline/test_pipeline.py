@@ -132,4 +132,6 @@ def test_simulated_runs_name_their_harbour_and_false_tracks_are_counted(recordin
     ev_all = evaluate_run(track_recording(recording, tuning="synthetic", map_spec="none").tracks, recording)
     assert ev_all.false_tracks.n_tracks > 0 and ev_all.false_tracks.n_on_land is not None  # judged by the run's own mask
     # confirmed tracks stay consistent with the tuning's v_max (10 m/s): the speed gate deletes faster ones
-    assert max(ev_all.false_tracks.max_speed_mps, ft["real"]["max_speed_mps"]) <= 2 * 10.0
+    # (compare's false tracks may be none: tracks of the harbour's moored boats are don't-care there)
+    speeds = [v for v in (ev_all.false_tracks.max_speed_mps, ft["real"]["max_speed_mps"]) if v is not None]
+    assert speeds and max(speeds) <= 2 * 10.0

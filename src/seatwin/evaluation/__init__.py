@@ -13,7 +13,7 @@ from seatwin.evaluation.evaluate import Evaluation, evaluate
 from seatwin.evaluation.hellinger import covdiff, hellinger
 from seatwin.evaluation.metrics import anees, anees_bounds, nees, rmse
 from seatwin.evaluation.tracks_io import Tracks, read_tracks, write_tracks
-from seatwin.evaluation.truth import TruthSet, TruthTrack, load_truth, truth_from_scenario
+from seatwin.evaluation.truth import TruthSet, TruthTrack, load_truth, stationary_truth, truth_from_scenario
 
 __all__ = [
     "Association",
@@ -35,6 +35,7 @@ __all__ = [
     "nees",
     "read_tracks",
     "rmse",
+    "stationary_truth",
     "truth_from_scenario",
     "write_tracks",
 ]

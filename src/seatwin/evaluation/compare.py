@@ -287,11 +287,13 @@ def compare(
     dont_care: TruthSet | None = None,
 ) -> Comparison:
     """Compare a real and a synthetic tracker run against the same ground truth (thesis 5.2.1); false tracks
-    on land are counted with the water ``mask`` when given; the score leaves plots and tracks near a vessel of
-    ``dont_care`` out of its clutter and false-track terms (:func:`seatwin.evaluation.score.score_runs`)."""
+    on land are counted with the water ``mask`` when given; tracks of a vessel of ``dont_care`` (no reliable ground
+    truth: AIS-only vessels, moored boats) are not false tracks (:func:`seatwin.evaluation.evaluate.false_tracks`), and
+    the score leaves plots and tracks near one out of its clutter and false-track terms
+    (:func:`seatwin.evaluation.score.score_runs`)."""
     options = options or CompareOptions()
-    ev_r = evaluate(real, truth, options.gate, options.confirmed_only, options.confidence, mask)
-    ev_s = evaluate(synthetic, truth, options.gate, options.confirmed_only, options.confidence, mask)
+    ev_r = evaluate(real, truth, options.gate, options.confirmed_only, options.confidence, mask, dont_care)
+    ev_s = evaluate(synthetic, truth, options.gate, options.confirmed_only, options.confidence, mask, dont_care)
     result = Comparison(tuning, options, ev_r, ev_s)
     if options.score is not None:
         result.score = score_runs([real], [synthetic], truth, [ev_r], [ev_s], options.score, dont_care=dont_care)

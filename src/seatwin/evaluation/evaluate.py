@@ -79,6 +79,9 @@ class FalseTracks:
     """False tracks whose mean position lies on land (None without a water mask)."""
     max_speed_mps: float | None
     """Largest estimated speed of any false track (impossible speeds show quay-sliding tracks)."""
+    n_dont_care: int = 0
+    """Tracks never associated with a target that follow a don't-care object (a moored boat: real, without ground
+    truth); not counted in ``n_tracks``."""
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -157,11 +160,34 @@ def summarise(series: TargetSeries, truth_defined: NDArray[np.bool_], confidence
     )
 
 
-def false_tracks(tracks: Tracks, assoc: Association, mask: object | None = None) -> FalseTracks:
-    """The tracks of ``tracks`` that ``assoc`` never gave to a target; on land per ``mask`` (``is_water(n, e)``)."""
+def false_tracks(
+    tracks: Tracks,
+    assoc: Association,
+    mask: object | None = None,
+    dont_care: TruthSet | None = None,
+    gate: float = DEFAULT_GATE_M,
+) -> FalseTracks:
+    """The tracks of ``tracks`` that ``assoc`` never gave to a target; on land per ``mask`` (``is_water(n, e)``).
+
+    ``dont_care``: vessels that are real but have no (reliable) ground truth — a harbour's moored boats
+    (:func:`stationary_truth` of :func:`seatwin.layout.moored_boat_positions`), AIS-only vessels. A never-associated
+    track with at least half of its rows within ``gate`` of one of them (at the row's time) is a track of that vessel,
+    counted in ``n_dont_care`` instead of as a false track."""
     used = {int(k) for k in assoc.track_id.ravel() if k >= 0}
     false = ~np.isin(tracks.track_id, list(used)) if used else np.ones(len(tracks.track_id), bool)
     false &= tracks.track_id >= 0
+    n_dont_care = 0
+    if dont_care is not None and len(dont_care) and false.any():
+        rows = np.flatnonzero(false)
+        where = dont_care.states_at(tracks.time[rows])[:, :, [0, 2]]  # (vessels, rows, 2)
+        d = np.hypot(where[:, :, 0] - tracks.state[rows, 0], where[:, :, 1] - tracks.state[rows, 2])
+        near = np.zeros(len(tracks.time), bool)
+        near[rows] = (np.where(np.isfinite(d), d, np.inf) <= gate).any(axis=0)
+        for k in np.unique(tracks.track_id[rows]):
+            m = false & (tracks.track_id == k)
+            if near[m].mean() >= 0.5:
+                false &= ~m
+                n_dont_care += 1
     ids = np.unique(tracks.track_id[false])
     on_land = None
     if mask is not None:
@@ -171,7 +197,7 @@ def false_tracks(tracks: Tracks, assoc: Association, mask: object | None = None)
             n, e = tracks.state[m][:, 0].mean(), tracks.state[m][:, 2].mean()
             on_land += int(not mask.is_water(float(n), float(e)))  # type: ignore[attr-defined]
     speeds = np.hypot(tracks.state[false, 1], tracks.state[false, 3])
-    return FalseTracks(int(len(ids)), int(false.sum()), on_land, float(speeds.max()) if len(speeds) else None)
+    return FalseTracks(int(len(ids)), int(false.sum()), on_land, float(speeds.max()) if len(speeds) else None, n_dont_care)
 
 
 def evaluate(
@@ -181,11 +207,13 @@ def evaluate(
     confirmed_only: bool = True,
     confidence: float = 0.95,
     mask: object | None = None,
+    dont_care: TruthSet | None = None,
 ) -> Evaluation:
     """Associate ``tracks`` with ``truth`` and compute every target's metrics (thesis 5.1.4), and the false
-    tracks (on land per the water ``mask``, when given)."""
+    tracks (on land per the water ``mask``, when given; tracks of the ``dont_care`` objects, e.g. moored boats,
+    are not false: :func:`false_tracks`)."""
     used = tracks.confirmed_only() if confirmed_only else tracks
     assoc = associate(used, truth, gate)
     series = {name: target_series(used, truth, assoc, name) for name in assoc.targets}
     summaries = [summarise(series[name], assoc.truth_defined[assoc.index(name)], confidence) for name in assoc.targets]
-    return Evaluation(assoc, series, summaries, false_tracks(used, assoc, mask))
+    return Evaluation(assoc, series, summaries, false_tracks(used, assoc, mask, dont_care, gate))

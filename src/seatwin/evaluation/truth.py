@@ -103,6 +103,17 @@ class TruthSet:
         return np.stack([tr.state_at(tt) for tr in self.targets.values()])
 
 
+def stationary_truth(points: ArrayLike, start: float, end: float, names: list[str] | None = None) -> TruthSet:
+    """Vessels that do not move (a harbour's moored boats): each of ``points`` ((n, 2) north/east [m]) held still
+    from ``start`` to ``end`` (POSIX s); named ``names`` or ``moored1``, ``moored2``, …"""
+    p = np.asarray(points, dtype=float).reshape(-1, 2)
+    names = names or [f"moored{i + 1}" for i in range(len(p))]
+    if len(names) != len(p):
+        raise ValueError(f"{len(names)} names for {len(p)} points")
+    t = np.array([start, max(end, start + 1.0)])
+    return TruthSet({n: TruthTrack(n, t, np.full(2, q[0]), np.full(2, q[1]), np.zeros(2), np.zeros(2)) for n, q in zip(names, p)})
+
+
 def truth_from_scenario(scenario) -> TruthSet:  # noqa: ANN001 - seatwin.scenario.Scenario
     """The targets of a :class:`seatwin.scenario.Scenario` (the ownship excluded), at their sample times."""
     out: dict[str, TruthTrack] = {}

@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from seatwin.errors import InputError, ParameterError
-from seatwin.pipeline.evaluate import check_overlap, recording_mask
+from seatwin.pipeline.evaluate import check_overlap, moored_vessels, recording_mask, recording_moored_boats
 from seatwin.pipeline.track import default_sensors, track_recording
 
 if TYPE_CHECKING:
@@ -213,7 +213,7 @@ def compare_runs(
     vessels that have no reliable ground truth (e.g. AIS tracks); its vessels that are not targets of ``truth``
     are neither clutter nor false tracks in the fidelity score (:func:`dont_care_vessels`).
     """
-    from seatwin.evaluation import CompareOptions, compare, comparison_table, load_truth, write_tracks
+    from seatwin.evaluation import CompareOptions, TruthSet, compare, comparison_table, load_truth, write_tracks
     from seatwin.evaluation.boxes import DEFAULT_MIN_IOU
     from seatwin.perception.camera_frames import camera_detector
 
@@ -231,6 +231,9 @@ def compare_runs(
     truth_set = load_truth(truth)
     ignored = None if dont_care is None else dont_care_vessels(dont_care, truth_set)
     mask = recording_mask(truth)
+    moored = moored_vessels(recording_moored_boats(truth), truth_set)
+    if moored is not None:  # the harbour's moored boats: real, no ground truth
+        ignored = moored if ignored is None else TruthSet({**ignored.targets, **moored.targets}, ignored.source)
     cache: dict[tuple[str, str | None, tuple[str, ...]], Tracks] = {}
     written: set[tuple[str, str | None, tuple[str, ...]]] = set()
     kept: list[Path] = []
@@ -270,7 +273,8 @@ def compare_runs(
         real, synthetic, str(truth), comparisons, comparison_table(comparisons), track_files=kept, camera=camera
     )
     if ignored is not None:
-        result.dont_care = {"source": str(dont_care), "vessels": ignored.names}
+        source = str(dont_care) if dont_care is not None else "the moored boats of the harbour"
+        result.dont_care = {"source": source, "vessels": ignored.names}
     result.warnings = list(dict.fromkeys(w for r, s, _, _ in pairs if (w := shared_draws(r, s)) is not None))
     if report_dir is not None:
         from seatwin.perception.map_mask import load_mask

@@ -5,6 +5,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+import numpy as np
+from numpy.typing import NDArray
+
 from seatwin.errors import InputError, ParameterError
 
 if TYPE_CHECKING:
@@ -39,6 +42,20 @@ def recording_mask(spec: str | Path | None) -> object | None:
     return None if hint is None else load_mask(hint)
 
 
+def recording_moored_boats(spec: str | Path | None) -> NDArray[np.float64]:
+    """(n, 2) north/east of the moored boats of the harbour a run directory's manifest names (its map hint:
+    :func:`seatwin.layout.moored_boat_positions`); none for anything else. They are real objects without ground
+    truth: tracks on them are don't-care, not false tracks."""
+    from seatwin.layout import moored_boat_positions
+    from seatwin.pipeline.track import map_hint
+    from seatwin.recording.manifest import read_manifest
+
+    if spec is None or not Path(spec).is_dir():
+        return np.empty((0, 2))
+    hint = map_hint(read_manifest(Path(spec)), Path(spec))
+    return np.empty((0, 2)) if hint is None else moored_boat_positions(hint)
+
+
 def evaluate_run(
     tracks: str | Path | Tracks,
     truth: str | Path | TruthSet,
@@ -49,7 +66,8 @@ def evaluate_run(
     map_spec: str | None = None,
 ) -> Evaluation:
     """Per-target metrics of ``tracks`` (a track file or :class:`Tracks`) against ``truth`` (scenario, recording or set),
-    and the false tracks — on land per ``map_spec`` ('harbour', 'none', a raster; default: the recording's own)."""
+    and the false tracks — on land per ``map_spec`` ('harbour', 'none', a raster; default: the recording's own); tracks
+    of that harbour's moored boats are don't-care, not false (:func:`recording_moored_boats`)."""
     from seatwin.evaluation import Tracks, evaluate, load_truth, read_tracks
 
     if not gate > 0:
@@ -60,9 +78,27 @@ def evaluate_run(
     truth_set = truth if not isinstance(truth, str | Path) else load_truth(truth)
     check_overlap(run, truth_set, str(run.source))
     if map_spec is not None:
+        from seatwin.layout import moored_boat_positions
         from seatwin.perception.map_mask import load_mask
 
-        mask = load_mask(map_spec)
+        mask, moored = load_mask(map_spec), moored_boat_positions(map_spec)
     else:
-        mask = recording_mask(truth if isinstance(truth, str | Path) else None)
-    return evaluate(run, truth_set, gate=gate, confirmed_only=confirmed_only, confidence=confidence, mask=mask)
+        own = truth if isinstance(truth, str | Path) else None
+        mask, moored = recording_mask(own), recording_moored_boats(own)
+    ignored = moored_vessels(moored, truth_set, run.time)
+    return evaluate(run, truth_set, gate=gate, confirmed_only=confirmed_only, confidence=confidence, mask=mask, dont_care=ignored)
+
+
+def moored_vessels(points: NDArray[np.float64], truth: TruthSet, times: NDArray[np.float64] | None = None) -> TruthSet | None:
+    """Moored boats at ``points`` as don't-care vessels, still over the span of ``truth`` and ``times`` (a day either
+    side: a moored boat is there all along); None when there are none."""
+    from seatwin.evaluation import stationary_truth
+
+    if not len(points):
+        return None
+    spans = [t for tr in truth.targets.values() for t in (tr.start, tr.end)]
+    if times is not None and len(times):
+        spans += [float(np.min(times)), float(np.max(times))]
+    if not spans:
+        return None
+    return stationary_truth(points, min(spans) - 86400.0, max(spans) + 86400.0)

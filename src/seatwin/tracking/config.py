@@ -122,8 +122,20 @@ class TrackerConfig(BaseModel):
         0.99,
         gt=0,
         lt=1,
-        description="A measurement inside this χ² gate of any track is 'associated' and starts no new track. "
-        "Our choice: a g = 1 gate alone would let a track's own detections start duplicates.",
+        description="A measurement inside this χ² gate of any track is 'associated' and starts no new track, unless "
+        "init_association_max frees it. Our choice: a g = 1 gate alone would let a track's own detections start "
+        "duplicates.",
+    )
+    init_association_max: float | None = Field(
+        0.5,
+        gt=0,
+        le=1,
+        description="A measurement inside a track's exclusion gate (init_exclusion_probability) still starts a new "
+        "track when the JIPDA posterior probability that it comes from an existing track (the marginals solved over "
+        "the exclusion gate) is below this: two plots in one track's gate that one track cannot both explain (a "
+        "second boat close by) leave the less likely one free. null: the thesis's rule, every measurement inside "
+        "the exclusion gate is 'associated' (two boats closer than the gate share one track). Our choice: 0.5, "
+        "a measurement more likely new than explained.",
     )
     max_hypotheses: int = Field(
         10000,
@@ -183,12 +195,14 @@ PRESETS: dict[str, dict[str, Any]] = {
     "synthetic": _thesis_preset("synthetic", 0.3, 56.0, 0.044, 0.09),
     # Thesis Table 5.1 / 5.2, "Real" row.
     "real": _thesis_preset("real", 0.2, 150.0, 0.04, 0.0026),
-    # The thesis's tracker (Table 5.1/5.2 "Real" row) as it was: no speed gate, tracks ignore the map.
+    # The thesis's tracker (Table 5.1/5.2 "Real" row) as it was: no speed gate, tracks ignore the map, no
+    # measurement inside a track's exclusion gate starts a track.
     "real-thesis": {
         **_thesis_preset("real-thesis", 0.2, 150.0, 0.04, 0.0026),
         "speed_gate_sigma": None,
         "speed_gate_scans": None,
         "land_scans": None,
+        "init_association_max": None,
     },
     # Real joyride radar (Telemetron, X-band navigation radar, ~2.5 s per rotation): values from
     # radar characteristics and the target class, not fitted to the dataset's ground truth

@@ -53,7 +53,7 @@ def gnn_assign(log_ratio: Array, gated: NDArray[np.bool_], log_miss: Array) -> N
 class GNNTracker(JIPDATracker):
     """JIPDATracker with global-nearest-neighbour association (hard decisions)."""
 
-    def _update(self, model, z: Array, R: Array, g2: float, pd_pg: float, tuning: SensorTuning) -> NDArray[np.bool_]:  # noqa: ANN001
+    def _update(self, model, z: Array, R: Array, g2: float, pd_pg: float, tuning: SensorTuning) -> Array:  # noqa: ANN001
         x, P, r = self.x, self.P, self.r
         zhat, H = model.predict(x)
         S = ekf.innovation_covariance(P, H, R)
@@ -61,12 +61,13 @@ class GNNTracker(JIPDATracker):
         v = model.residual(z, zhat)
         d2 = ekf.mahalanobis2(v, S_inv)
         gated = d2 < g2
-        associated = (d2 < self._excl[z.shape[1]]).any(axis=0)
-        if not gated.any():
-            self.r = existence_posterior(r, np.ones(r.size), pd_pg)[0]
-            return associated
         log_norm = -0.5 * (ekf.log_det_small(S) + z.shape[1] * _LOG_2PI)
         lam = model.clutter_density(z, tuning.clutter_density)
+        # Initiation: the same rule as the JIPDA agent (soft marginals over the exclusion gate).
+        unexplained = self._explained(r, d2, log_norm, lam, z.shape[1], tuning)
+        if not gated.any():
+            self.r = existence_posterior(r, np.ones(r.size), pd_pg)[0]
+            return unexplained
         log_L = math.log(tuning.p_detect) + log_norm[:, None] - 0.5 * d2 - np.log(lam)[None, :]
         miss = 1.0 - r * pd_pg
         choice = gnn_assign(np.log(np.maximum(r, 1e-300))[:, None] + log_L, gated, np.log(np.maximum(miss, 1e-300)))
@@ -82,7 +83,7 @@ class GNNTracker(JIPDATracker):
             self.x[t] = x_new
             self.P[t] = P_new
         self.r = existence_posterior(r, beta0, pd_pg)[0]
-        return associated
+        return unexplained
 
 
 def track_gnn(scans, config) -> TrackTable:  # noqa: ANN001

@@ -8,7 +8,9 @@ update existence, confirm/terminate by thresholds, delete tracks that cannot be 
 confirmed track whose speed is inconsistent with ``v_max``: :func:`too_fast`; a track faster than
 ``v_max`` + margin for more than ``speed_gate_scans`` scans; with a water mask, a track on land for
 more than ``land_scans`` scans, and none is confirmed on land), then start tracks from pairs of
-unassociated measurements of the same sensor within ``d = v_max·ΔT`` (thesis 5.1.3).
+unassociated measurements of the same sensor within ``d = v_max·ΔT`` (thesis 5.1.3); a measurement
+inside a track's exclusion gate counts as unassociated when the JIPDA says it is probably not that
+track's (``init_association_max``: two boats close together get two tracks).
 
 All tracks live in stacked arrays (``x`` (T, 4), ``P`` (T, 4, 4), ``r`` (T,)) so that each
 step is a handful of vectorised numpy operations whatever the number of tracks.
@@ -132,10 +134,11 @@ class JIPDATracker:
         """Tracks deleted so far for a speed beyond ``v_max`` (:func:`too_fast`, ``speed_gate_scans``)."""
         self.deleted_on_land = 0
         """Tracks deleted so far for staying on land (``land_scans``)."""
-        # Unassociated positional measurements of each sensor's previous scan: (time, pos, cov).
-        self._pending: dict[str, tuple[float, Array, Array]] = {}
+        # Unassociated positional measurements of each sensor's previous scan: (time, pos, cov, unexplained).
+        self._pending: dict[str, tuple[float, Array, Array, Array]] = {}
         self._gates: dict[int, tuple[float, float]] = {}
         self._excl: dict[int, float] = {}
+        self._excl_pg: dict[int, float] = {}
         self._R_cache: dict[tuple[str, str], Array] = {}
         self._FQ: tuple[float, Array, Array] | None = None
 
@@ -144,7 +147,8 @@ class JIPDATracker:
         if dim not in self._gates:
             c = self.config
             self._gates[dim] = gate_threshold(dim, g=c.gate_g, probability=c.gate_probability)
-            self._excl[dim] = max(self._gates[dim][0], gate_threshold(dim, probability=c.init_exclusion_probability)[0])
+            excl = gate_threshold(dim, probability=c.init_exclusion_probability)
+            self._excl[dim], self._excl_pg[dim] = max(self._gates[dim], excl)
         return self._gates[dim]
 
     def _R(self, scan: Scan, tuning: SensorTuning) -> Array:
@@ -201,21 +205,22 @@ class JIPDATracker:
         g2, pg = self._gate(dim)
         pd_pg = tuning.p_detect * pg
         T, M = self.r.size, z.shape[0]
-        associated = np.zeros(M, dtype=bool)
+        unexplained = np.ones(M)
         if T:
             model = model_for_scan(scan, R)
             if M:
-                associated = self._update(model, z, R, g2, pd_pg, tuning)
+                unexplained = self._update(model, z, R, g2, pd_pg, tuning)
             else:
                 self.r = existence_posterior(self.r, np.ones(T), pd_pg)[0]
             self._manage()
         if scan.kind is not MeasurementKind.BEARING:
-            self._initiate(scan, z[~associated], tuning)
+            free = unexplained > 0
+            self._initiate(scan, z[free], tuning, unexplained[free])
         return self.snapshot()
 
-    def _update(
-        self, model: MeasurementModel, z: Array, R: Array, g2: float, pd_pg: float, tuning: SensorTuning
-    ) -> NDArray[np.bool_]:
+    def _update(self, model: MeasurementModel, z: Array, R: Array, g2: float, pd_pg: float, tuning: SensorTuning) -> Array:
+        """Update the tracks with one scan's measurements ``z``; return each measurement's probability of coming from
+        no existing track as far as initiation is concerned (:meth:`_explained`)."""
         x, P, r = self.x, self.P, self.r
         zhat, H = model.predict(x)
         S = ekf.innovation_covariance(P, H, R)
@@ -223,17 +228,15 @@ class JIPDATracker:
         v = model.residual(z, zhat)  # (T, M, d)
         d2 = ekf.mahalanobis2(v, S_inv)
         gated = d2 < g2
-        excl = self._excl[z.shape[1]]
-        associated = gated.any(axis=0) if excl == g2 else (d2 < excl).any(axis=0)
-        if not gated.any():
-            self.r = existence_posterior(r, np.ones(r.size), pd_pg)[0]
-            return associated
         log_norm = -0.5 * (ekf.log_det_small(S) + z.shape[1] * _LOG_2PI)
         lam = model.clutter_density(z, tuning.clutter_density)
-        with np.errstate(under="ignore"):
-            L = np.where(gated, tuning.p_detect * np.exp(log_norm[:, None] - 0.5 * d2) / lam[None, :], 0.0)
+        if not gated.any():
+            self.r = existence_posterior(r, np.ones(r.size), pd_pg)[0]
+            return self._explained(r, d2, log_norm, lam, z.shape[1], tuning)
+        L = _likelihood_ratio(gated, d2, log_norm, lam, tuning.p_detect)
         c = self.config
         beta0, beta = jipda_marginals(r, L, gated, pd_pg, c.max_hypotheses, c.association, c.max_frontier_work)
+        unexplained = self._explained(r, d2, log_norm, lam, z.shape[1], tuning, beta if self._excl[z.shape[1]] == g2 else None)
         r_post, w0 = existence_posterior(r, beta0, pd_pg)
         # Mixture of the EKF corrections, conditional on existence.
         W = ekf.gain(P, H, S_inv)  # (T, 4, d)
@@ -251,7 +254,35 @@ class JIPDATracker:
         self.x = x_new
         self.P = 0.5 * (P_new + np.swapaxes(P_new, 1, 2))
         self.r = r_post
-        return associated
+        return unexplained
+
+    def _explained(
+        self, r: Array, d2: Array, log_norm: Array, lam: Array, dim: int, tuning: SensorTuning, beta: Array | None = None
+    ) -> Array:
+        """(M,) each measurement's weight for initiation (thesis 5.1.3: only unassociated measurements start tracks):
+        0 where existing tracks explain it (it starts nothing), else the probability that no existing track produced
+        it (1 outside every track's exclusion gate). ``d2`` (T, M) squared Mahalanobis distances, ``log_norm`` (T,) the
+        Gaussians' log normalisers, ``lam`` (M,) clutter densities; ``beta``: the JIPDA marginals when the
+        validation gate is the exclusion gate (then reused).
+
+        A measurement outside every track's exclusion gate is free. Inside one, with ``init_association_max``
+        null (the thesis's rule) it is explained; otherwise it is explained when the JIPDA posterior probability
+        that an existing track produced it, Σ_t β_tj with the marginals solved over the exclusion gate, is at
+        least ``init_association_max``, and free with weight 1 − Σ_t β_tj below it. A track takes at most one
+        measurement a scan, so of two plots in one gate that one track cannot both explain (a second boat 20 m
+        away), the less likely one stays free to start a track, whereas a track's own detection, alone in its
+        gate, is explained unless it lies so far out that its likelihood is down to the clutter density's.
+        """
+        c = self.config
+        inside = d2 < self._excl[dim]
+        if c.init_association_max is None or not inside.any():
+            return (~inside.any(axis=0)).astype(float)
+        if beta is None:
+            L = _likelihood_ratio(inside, d2, log_norm, lam, tuning.p_detect)
+            pd_pg = tuning.p_detect * self._excl_pg[dim]
+            beta = jipda_marginals(r, L, inside, pd_pg, c.max_hypotheses, c.association, c.max_frontier_work)[1]
+        explained = np.clip(beta.sum(axis=0), 0.0, 1.0)
+        return np.where(explained >= c.init_association_max, 0.0, 1.0 - explained)
 
     def _manage(self) -> None:
         """Confirm by existence (not on land); delete tracks below the termination threshold, confirmed tracks
@@ -290,14 +321,16 @@ class JIPDATracker:
             on_land = ~np.asarray(self.water.is_water(x[:, 0], x[:, 2]), dtype=bool)
         return over, on_land
 
-    def _initiate(self, scan: Scan, z: Array, tuning: SensorTuning) -> None:
-        """Two-point initiation from unassociated measurements within d = v_max·ΔT (+ margin)."""
+    def _initiate(self, scan: Scan, z: Array, tuning: SensorTuning, unexplained: Array) -> None:
+        """Two-point initiation from unassociated measurements within d = v_max·ΔT (+ margin); a new track's
+        existence is ``initial_existence`` × both measurements' ``unexplained`` probabilities (1 outside every
+        track's exclusion gate: the thesis's initiation)."""
         pos = polar_or_cartesian(scan, z)
         cov = _position_covariance(scan, z, tuning) if z.shape[0] else np.zeros((0, 2, 2))
         prev = self._pending.get(scan.sensor)
         unused = np.ones(pos.shape[0], dtype=bool)
         if prev is not None and pos.shape[0] and prev[1].shape[0]:
-            t0, pos0, cov0 = prev
+            t0, pos0, cov0, u0 = prev
             dt = scan.time - t0
             if dt > 0:
                 d_max = self.config.v_max * dt + self.config.init_margin
@@ -313,10 +346,11 @@ class JIPDATracker:
                             used0[k] = True
                             new_i.append(i)
                             new_k.append(k)
-                    self._add_tracks(pos[new_i], cov[new_i], pos0[new_k], cov0[new_k], dt)
-        self._pending[scan.sensor] = (scan.time, pos[unused], cov[unused])
+                    r0 = self.config.initial_existence * unexplained[new_i] * u0[new_k]
+                    self._add_tracks(pos[new_i], cov[new_i], pos0[new_k], cov0[new_k], dt, r0)
+        self._pending[scan.sensor] = (scan.time, pos[unused], cov[unused], unexplained[unused])
 
-    def _add_tracks(self, p1: Array, c1: Array, p0: Array, c0: Array, dt: float) -> None:
+    def _add_tracks(self, p1: Array, c1: Array, p0: Array, c0: Array, dt: float, r0: Array) -> None:
         n = p1.shape[0]
         if not n:
             return
@@ -330,7 +364,7 @@ class JIPDATracker:
         P[np.ix_(range(n), vel_i, pos_i)] = c1 / dt
         self.x = np.concatenate((self.x, x))
         self.P = np.concatenate((self.P, P))
-        self.r = np.concatenate((self.r, np.full(n, self.config.initial_existence)))
+        self.r = np.concatenate((self.r, r0))
         self.ids = np.concatenate((self.ids, np.arange(self._next_id, self._next_id + n)))
         self.confirmed = np.concatenate((self.confirmed, np.zeros(n, dtype=bool)))
         # A new track's own scan counts: its first estimate may already be too fast or on land.
@@ -387,6 +421,12 @@ def run_tracker(
         if on_scan is not None:
             on_scan(scan)
     return TrackRun(TrackTable.concatenate(parts), np.asarray(times, dtype=np.float64))
+
+
+def _likelihood_ratio(gated: NDArray[np.bool_], d2: Array, log_norm: Array, lam: Array, p_detect: float) -> Array:
+    """(T, M) ``P_D · N(z_j; ẑ_t, S_t) / λ(z_j)`` where ``gated``, else 0."""
+    with np.errstate(under="ignore"):
+        return np.where(gated, p_detect * np.exp(log_norm[:, None] - 0.5 * d2) / lam[None, :], 0.0)
 
 
 def polar_or_cartesian(scan: Scan, z: Array) -> Array:
