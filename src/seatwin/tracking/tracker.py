@@ -374,7 +374,8 @@ class JIPDATracker:
         self._next_id += n
 
     def snapshot(self) -> TrackTable:
-        """The live tracks now."""
+        """The live tracks now; a confirmed track whose estimate is on land (kept for up to ``land_scans`` scans,
+        one noisy estimate beside a quay) is reported unconfirmed there, so no confirmed row is ever on land."""
         n = self.r.size
         return TrackTable(
             np.full(n, self.time if self.time is not None else np.nan),
@@ -382,7 +383,7 @@ class JIPDATracker:
             self.r.copy(),
             self.x.copy(),
             self.P.copy(),
-            self.confirmed.copy(),
+            self.confirmed & (self.land_scans == 0),
         )
 
     def run(self, scans: Iterable[Scan]) -> TrackTable:
