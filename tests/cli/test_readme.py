@@ -34,6 +34,8 @@ SHOWS = {
         re.search(r"common \d+\.0\b", out) is None and "floor: AHED between" in out and "ranking by fidelity score" in out
     ),
     "seatwin scenario info": lambda out, err: "{" not in out and "…" not in out,
+    # the shipped GNSS examples import to a named scenario, every vessel on water (issue 25, item 5)
+    "seatwin scenario info runs/gt/": lambda out, err: out.startswith("ravnkloa_example") and "on land" not in err,
     # results shown, not only written (issue 25, item 11)
     "seatwin campaign": lambda out, err: "Summary" in out and "campaign.png" in out and "Token authentication" not in err,
 }
