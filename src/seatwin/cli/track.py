@@ -3,10 +3,14 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import typer
 
 from seatwin.cli.output import overwrite_option
+
+if TYPE_CHECKING:
+    from seatwin.pipeline.track import TrackingSummary
 
 _HELP = (
     "Track targets in a recording with the JIPDA tracker and extended Kalman filters (thesis ch. 5.1).\n\n"
@@ -85,6 +89,12 @@ def register(app: typer.Typer) -> None:
         classes: str | None = typer.Option(
             None, "--classes", metavar="ID[,ID…]", help="Class ids the onnx detector keeps (default: 8, COCO 'boat')."
         ),
+        figure: Path | None = typer.Option(
+            None,
+            "--figure",
+            metavar="FILE.png",
+            help="Also draw the confirmed tracks from above (with the ground truth and land the recording has) as PNG.",
+        ),
         progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar on long recordings."),
         overwrite: bool = overwrite_option(),
         ignore_crc: bool = typer.Option(
@@ -93,10 +103,12 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         from seatwin.cli.output import progress_counter, split_list
         from seatwin.outputs import check_output_file
-        from seatwin.pipeline.track import TrackOptions, track_recording
+        from seatwin.pipeline.track import TrackOptions, plot_tracking, track_recording, tracking_summary
         from seatwin.settings import validated
 
         check_output_file(out, "out", inputs=[recording, model, tuning, map_spec], overwrite=overwrite)
+        if figure is not None:
+            check_output_file(figure, "figure", inputs=[recording, model, tuning, map_spec], overwrite=overwrite, outputs=[out])
         options = validated(
             TrackOptions,
             dict(
@@ -122,7 +134,30 @@ def register(app: typer.Typer) -> None:
             typer.echo(f"warning: {recording}: {result.bad_crc} CRC mismatch(es) ignored (--ignore-crc)", err=True)
         result.tracks.source = str(out)
         write_tracks(out, result.tracks)
+        summary = tracking_summary(result)
         typer.echo(
             f"{result.n_scans} scans ({', '.join(result.sensors)}), tuning {result.tuning!r}: {result.n_tracks} tracks, "
             f"{result.n_confirmed} confirmed; {result.elapsed_s:.2f} s; wrote {out}"
         )
+        for line in summary_lines(summary):
+            typer.echo(line)
+        if figure is not None:
+            title = f"{recording}: {', '.join(result.sensors)}, tuning {result.tuning}"
+            plot_tracking(result, figure, title=title, overwrite=True)
+            typer.echo(f"wrote {figure}")
+
+
+def summary_lines(summary: TrackingSummary) -> list[str]:
+    """The console lines of a :class:`~seatwin.pipeline.track.TrackingSummary`: per-target coverage, false tracks and
+    tracks on land (each only where the recording has what it needs: ground truth, a water mask)."""
+    s = summary
+    lines: list[str] = []
+    if s.coverage:
+        cov = ", ".join(
+            f"{name} {'never tracked' if c is None or c == 0 else f'{100 * c:.0f} %'}" for name, c in s.coverage.items()
+        )
+        lines.append(f"  targets (share of their time with a confirmed track): {cov}")
+    false = "— (no ground truth in the recording)" if s.false_tracks is None else str(s.false_tracks)
+    land = "— (no water mask)" if s.on_land is None else str(s.on_land)
+    lines.append(f"  confirmed tracks {s.n_confirmed}: false tracks {false}, on land {land}")
+    return lines
