@@ -23,9 +23,14 @@ def _plt() -> ModuleType:
     return plt
 
 
+FIGURE_DPI = 144
+"""Pixels per inch of the report's figures: a figure 8 inches wide is 1152 pixels, shown 960 CSS pixels wide
+(:data:`seatwin.report.html.PIXELS_PER_CSS_PX`), sharp on high-density screens."""
+
+
 def to_png(fig) -> bytes:  # noqa: ANN001
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=90, bbox_inches="tight")
+    fig.savefig(buf, format="png", dpi=FIGURE_DPI, bbox_inches="tight", pad_inches=0.08)
     _plt().close(fig)
     return buf.getvalue()
 
