@@ -180,3 +180,35 @@ def test_the_checks_find_what_they_look_for():
     ax.legend(loc="lower right")
     assert figure_problems(fig) == []
     plt.close(fig)
+
+
+def test_the_figures_seatwin_writes_as_files_read_well(tmp_path, monkeypatch):
+    """The same checks on the figures the verbs write as files (scenario plot, lidar sweep, GNSS quality, depth-buffer
+    errors, tracking), through ``Figure.savefig``."""
+    from matplotlib.figure import Figure
+
+    from seatwin.groundtruth.examples import EXAMPLES_DIR, ORIGIN
+    from seatwin.groundtruth.plots import write_plots
+    from seatwin.groundtruth.vessel import VesselSpec
+    from seatwin.pipeline import compute_ground_truth, lidar_snapshot, load_scenario, plot_scenario, write_error_plots
+
+    found: list[str] = []
+    saved = []
+    original = Figure.savefig
+
+    def checking(self, *args, **kwargs):  # noqa: ANN001, ANN002, ANN003, ANN202
+        saved.append(args[0])
+        found.extend(figure_problems(self))
+        return original(self, *args, **kwargs)
+
+    monkeypatch.setattr(Figure, "savefig", checking)
+    root = figures.__file__.rsplit("/src/", 1)[0]
+    for spec in ("ferry_crossing", f"{root}/docs/examples/extending/my_scenario.yaml"):
+        plot_scenario(load_scenario(spec), tmp_path / f"{len(saved)}.png")
+    lidar_snapshot("ferry_crossing", 20, tmp_path / "sweep.png")
+    e = EXAMPLES_DIR
+    gt = compute_ground_truth([VesselSpec("Havfruen", (e / "havfruen_bow.pos", e / "havfruen_stern.pos"))], ORIGIN)
+    write_plots(gt, tmp_path)
+    write_error_plots(tmp_path / "errors")
+    assert len(saved) >= 9
+    assert not found, "\n".join(found)
