@@ -77,6 +77,8 @@ def test_examples_import_to_a_named_scenario_on_water(tmp_path, shared_data, cap
     assert run(_example_args(named, "--name", "Ravnkloa canal", "--ownship", "Finn")) == 0
     sc2 = load_scenario(named)
     assert sc2.name == "Ravnkloa canal" and sc2.ownship.name == "Finn"
+    assert run(_example_args(tmp_path / "open" / "s.yaml", "--harbour", "none")) == 0
+    assert load_scenario(tmp_path / "open" / "s.yaml").environment["harbour"] == "none"
 
 
 def test_example_vessels_keep_apart():
@@ -94,7 +96,7 @@ def test_example_vessels_keep_apart():
 
 @pytest.mark.parametrize(
     ("extra", "flag"),
-    [(["--name", "x"], "--name"), (["--ownship", "milliAmpere"], "--ownship")],
+    [(["--name", "x"], "--name"), (["--ownship", "milliAmpere"], "--ownship"), (["--harbour", "none"], "--harbour")],
 )
 def test_a_csv_cannot_hold_a_name_and_says_so(tmp_path, capsys, extra, flag):
     from seatwin.cli.main import run
@@ -106,11 +108,20 @@ def test_a_csv_cannot_hold_a_name_and_says_so(tmp_path, capsys, extra, flag):
     assert not out.exists()
 
 
-def test_an_unknown_ownship_is_refused_before_any_work(tmp_path, capsys):
+@pytest.mark.parametrize(
+    ("extra", "words"),
+    [
+        (["--ownship", "Nobody"], ["--ownship", "Nobody", "Havfruen, Finn, milliAmpere"]),
+        (["--harbour", "nowhere.yaml"], ["--harbour", "nowhere.yaml", "not found"]),
+        (["--harbour", "atlantis"], ["--harbour", "expected a harbour name"]),
+        (["--name", " "], ["--name", "non-empty"]),
+    ],
+)
+def test_bad_scenario_options_are_refused_before_any_work(tmp_path, capsys, extra, words):
     from seatwin.cli.main import run
 
     out = tmp_path / "s.yaml"
-    assert run(_example_args(out, "--ownship", "Nobody")) == 2
+    assert run(_example_args(out, *extra)) == 2
     err = capsys.readouterr().err
-    assert "--ownship" in err and "Nobody" in err and "Havfruen, Finn, milliAmpere" in err
+    assert len(err.strip().splitlines()) == 1 and all(w in err for w in words), err
     assert not out.exists() and not out.with_suffix(".csv").exists()

@@ -112,11 +112,14 @@ def register(app: typer.Typer) -> None:
             metavar="VESSEL",
             help="The ownship, with --out NAME.yaml (default: the last --vessel, as a Gemini CSV's highest-numbered one).",
         ),
-        harbour: str = typer.Option(
-            "ravnkloa",
+        harbour: str | None = typer.Option(
+            None,
             "--harbour",
             metavar="HARBOUR",
-            help="The scenario's harbour, with --out NAME.yaml: default, ravnkloa, none or a land raster .yaml path.",
+            help=(
+                "The scenario's harbour, with --out NAME.yaml: default, ravnkloa, none or a land raster .yaml path "
+                "(default: ravnkloa)."
+            ),
         ),
         overwrite: bool = overwrite_option(),
     ) -> None:

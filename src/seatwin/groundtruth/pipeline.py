@@ -58,10 +58,11 @@ class GroundTruthResult:
         """One trajectory per vessel, in the order given (vessel numbers 1, 2, …)."""
         return [v.trajectory() for v in self.vessels]
 
-    def scenario(self, name: str = "groundtruth", ownship: str | None = None, harbour: str = DEFAULT_HARBOUR) -> Scenario:
+    def scenario(self, name: str = "groundtruth", ownship: str | None = None, harbour: str | None = None) -> Scenario:
         """A :class:`Scenario` of the vessels (all targets, except ``ownship`` if named; a known vessel name gets its
-        model and size, :func:`~seatwin.scenario.defaults.model_of_name`) in ``harbour``."""
-        check_scenario_options("scenario.yaml", [v.name for v in self.vessels], name, ownship, harbour)
+        model and size, :func:`~seatwin.scenario.defaults.model_of_name`) in ``harbour`` (default :data:`DEFAULT_HARBOUR`)."""
+        check_scenario_options(None, [v.name for v in self.vessels], name, ownship, harbour)
+        harbour = DEFAULT_HARBOUR if harbour is None else harbour
         vessels = []
         for v in self.vessels:
             role = Role.OWNSHIP if v.name == ownship else Role.TARGET
@@ -172,25 +173,29 @@ def check_vessel_motion(truth: VesselGroundTruth, max_speed: float = MAX_SPEED, 
 
 
 def check_scenario_options(
-    out: str | os.PathLike[str], vessels: Sequence[str], name: str | None, ownship: str | None, harbour: str
+    out: str | os.PathLike[str] | None, vessels: Sequence[str], name: str | None, ownship: str | None, harbour: str | None
 ) -> bool:
-    """True when ``out`` is a scenario YAML; a :class:`ParameterError` for a ``name``/``ownship`` that a Gemini CSV
-    cannot hold, an empty name, an ``ownship`` that is not one of ``vessels`` or an unknown ``harbour``."""
-    from seatwin.layout.harbours import check_harbour_spec
+    """True when ``out`` is a scenario YAML (None: no file, a scenario in memory); a :class:`ParameterError` for a
+    ``name``/``ownship``/``harbour`` that a Gemini CSV ``out`` cannot hold, an empty name, an ``ownship`` that is not
+    one of ``vessels``, an unknown ``harbour`` or a harbour raster that is not there."""
+    from seatwin.layout.harbours import check_harbour_spec, harbour_name
 
-    as_yaml = Path(out).suffix.lower() in SCENARIO_SUFFIXES
+    as_yaml = out is None or Path(out).suffix.lower() in SCENARIO_SUFFIXES
     if not as_yaml:
-        for param, value in (("name", name), ("ownship", ownship)):
+        for param, value in (("name", name), ("ownship", ownship), ("harbour", harbour)):
             if value is not None:
                 raise ParameterError(param, f"a Gemini CSV ({out}) holds no {param}; write a scenario .yaml to give one")
     if name is not None and not name.strip():
         raise ParameterError("name", "expected a non-empty scenario name")
     if ownship is not None and ownship not in vessels:
         raise ParameterError("ownship", f"no vessel named {ownship!r}; vessels are {', '.join(vessels)}")
-    try:
-        check_harbour_spec(harbour)
-    except ValueError as e:
-        raise ParameterError("harbour", f"{e}, got {harbour!r}") from None
+    if harbour is not None:
+        try:
+            check_harbour_spec(harbour)
+        except ValueError as e:
+            raise ParameterError("harbour", f"{e}, got {harbour!r}") from None
+        if harbour_name(harbour) is None and not Path(harbour).is_file():
+            raise ParameterError("harbour", f"land raster {harbour!r} not found")
     return as_yaml
 
 
@@ -203,7 +208,7 @@ def check_outputs(
     overwrite: bool = False,
     name: str | None = None,
     ownship: str | None = None,
-    harbour: str = DEFAULT_HARBOUR,
+    harbour: str | None = None,
 ) -> None:
     """Refuse, before any work, outputs that would replace an antenna log or each other, or an existing file
     (unless ``overwrite``), or that cannot be written, and scenario options that cannot be honoured
@@ -237,15 +242,16 @@ def write_outputs(
     *,
     name: str | None = None,
     ownship: str | None = None,
-    harbour: str = DEFAULT_HARBOUR,
+    harbour: str | None = None,
 ) -> list[Path]:
     """Write the scenario, and optionally the quality report and figures; all or nothing (check them first
     with :func:`check_outputs`).
 
     ``out_csv`` ending in ``.csv`` is a Gemini CSV (no name: a reader names it after the file; its last vessel is
     the ownship); ending in ``.yaml``/``.yml`` it is a scenario YAML with the CSV beside it, named ``name`` (default:
-    the file's stem), ``ownship`` (default: the last vessel, as in a Gemini CSV) the ownship, in ``harbour``.
-    ``name``/``ownship`` with a CSV are a :class:`ParameterError` (a CSV cannot hold them).
+    the file's stem), ``ownship`` (default: the last vessel, as in a Gemini CSV) the ownship, in ``harbour`` (default
+    :data:`DEFAULT_HARBOUR`). ``name``/``ownship``/``harbour`` with a CSV are a :class:`ParameterError` (a CSV cannot
+    hold them).
 
     Returns the paths written.
     """
