@@ -3,11 +3,11 @@
 Three vessels in the Ravnkloa canal, one minute at 5 Hz, 2 cm antenna noise, about the Ravnkloa origin
 (:data:`seatwin.scenario.defaults.RAVNKLOA`, 63.4336 N, 10.3926 E: the frame of the Gemini scenarios, to which the
 Ravnkloa land raster is aligned), so the scenario they give plays in harbour ``ravnkloa`` with every vessel on water
-(a test checks it on the real raster): Havfruen with bow and stern antennas 2.93 m apart (RTKLIB ``.pos``, GPST)
-heads up the canal turning to starboard, Finn (one antenna: GPX, and the same fixes as CSV) comes down it, and the
-ownship milliAmpere (one antenna: NMEA GGA + RMC) crosses it, as the ferry does. Every path keeps at least 7 m from
-the shore in the aligned raster. The files in ``examples/`` beside this module are :func:`write_example_logs`'s output
-(a test keeps them equal).
+(a test checks it on the real raster): Havfruen with bow and stern antennas 2.01 m apart (the thesis's baseline;
+RTKLIB ``.pos``, GPST) heads up the canal turning to starboard, Finn (one antenna: GPX, and the same fixes as CSV)
+comes down it, and the ownship milliAmpere (one antenna: NMEA GGA + RMC) crosses it, as the ferry does. Every path
+keeps at least 7 m from the shore in the aligned raster. The files in ``examples/`` beside this module are
+:func:`write_example_logs`'s output (a test keeps them equal).
 """
 
 from __future__ import annotations
@@ -27,7 +27,8 @@ ORIGIN: GeodeticOrigin = RAVNKLOA
 T0 = float(calendar.timegm((2020, 9, 15, 10, 0, 0)))
 DURATION_S = 60.0
 RATE_HZ = 5.0
-BASELINE_M = 2.93
+BASELINE_M = 2.01
+"""Havfruen's bow–stern antenna distance [m], the thesis's (§3.3.2) and seatwin's default for Havfruen."""
 NOISE_M = 0.02
 ANTENNA_HEIGHT_M = 40.0
 """Ellipsoidal height of the antennas [m] (sea level is about 40 m above the ellipsoid here)."""
