@@ -34,7 +34,13 @@ SHOWS = {
         re.search(r"common \d+\.0\b", out) is None and "floor: AHED between" in out and "ranking by fidelity score" in out
     ),
     "seatwin scenario info": lambda out, err: "{" not in out and "…" not in out,
+    # the shipped GNSS examples import to a named scenario, every vessel on water (issue 25, item 5)
+    "seatwin scenario info runs/gt/": lambda out, err: out.startswith("ravnkloa_example") and "on land" not in err,
     # results shown, not only written (issue 25, item 11)
+    "seatwin track runs/ferry --sensors lidar --tuning": lambda out, err: (
+        re.search(r"confirmed tracks \d+: false tracks \d+, on land \d+", out) is not None and "ferry_tracks.png" in out
+    ),
+    "seatwin simulate ferry_crossing": lambda out, err: "on water: Havfruen 100 %, Finn 100 %, milliAmpere 100 %" in out,
     "seatwin campaign": lambda out, err: "Summary" in out and "campaign.png" in out and "Token authentication" not in err,
 }
 

@@ -19,8 +19,8 @@ from seatwin.cli.main import app, run
 
 # verb → the seatwin.pipeline names its command calls
 VERB_CALLS: dict[str, tuple[str, ...]] = {
-    "simulate": ("simulate_run",),
-    "track": ("track_recording",),
+    "simulate": ("simulate_run", "simulated_scenario", "vessels_on_water", "plot_simulation"),
+    "track": ("track_recording", "tracking_summary", "plot_tracking"),
     "evaluate": ("evaluate_run",),
     "compare": ("compare_runs",),
     "demo": ("run_demo",),
@@ -49,6 +49,7 @@ VERB_CALLS: dict[str, tuple[str, ...]] = {
     "bag convert": ("convert_bag",),
     "view": ("RecordingViewer",),
     "harbour fit-alignment": ("fit_harbour_alignment", "write_alignment"),
+    "harbour rasterize": ("land_raster_from_geojson", "write_land_raster"),
 }
 
 

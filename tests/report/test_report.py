@@ -1,4 +1,4 @@
-"""The HTML report: self-contained, and renders in headless Chromium with every figure decoded."""
+"""The HTML report: self-contained, and renders in headless Chromium with every figure decoded and shown large."""
 
 from __future__ import annotations
 
@@ -91,11 +91,23 @@ def test_renders_in_headless_chromium(page: Path, tmp_path: Path) -> None:
         f"--user-data-dir={tmp_path / 'profile'}",
         "--virtual-time-budget=10000",
     ]
-    dom = subprocess.run([exe, *flags, "--dump-dom", page.as_uri()], capture_output=True, text=True, timeout=120)
+    dom = subprocess.run(
+        [exe, *flags, "--window-size=1200,2000", "--dump-dom", page.as_uri()], capture_output=True, text=True, timeout=120
+    )
     assert dom.returncode == 0, dom.stderr[-2000:]
     m = re.search(r'data-figures="(\d+)/(\d+)"', dom.stdout)
     assert m, "the page's load check did not run"
     assert m.group(1) == m.group(2) and int(m.group(2)) >= 6, f"figures decoded: {m.group(0)}"
+    # Shown large: each figure as wide as the page asks (its pixels / PIXELS_PER_CSS_PX), or the whole column.
+    from seatwin.report.html import PIXELS_PER_CSS_PX
+
+    widths = re.search(r'data-figure-widths="([^"]*)"', dom.stdout)
+    column = re.search(r'data-content-width="(\d+)"', dom.stdout)
+    assert widths and column, "the page's size check did not run"
+    for pair in widths.group(1).split(","):
+        shown, natural = (int(x) for x in pair.split(":"))
+        assert abs(shown - min(natural / PIXELS_PER_CSS_PX, int(column.group(1)))) <= 2, (pair, column.group(1))
+        assert shown >= 500, f"a figure shown only {shown} px wide"
     shot = tmp_path / "shot.png"
     run = subprocess.run(
         [exe, *flags, f"--screenshot={shot}", "--window-size=1200,2000", page.as_uri()],

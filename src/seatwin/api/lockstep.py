@@ -46,7 +46,7 @@ from seatwin.errors import InputError, ParameterError
 from seatwin.layout.harbours import check_harbour_spec
 from seatwin.recording.manifest import MANIFEST_NAME
 from seatwin.scenario import Role, Scenario, Trajectory, Vessel
-from seatwin.scenario.defaults import NOMINAL_DIMENSIONS, OWNSHIP_NAME, RAVNKLOA, TARGETS_BY_COLUMN
+from seatwin.scenario.defaults import OWNSHIP_NAME, RAVNKLOA, TARGETS_BY_COLUMN, model_of_name
 from seatwin.settings import Settings
 from seatwin.sim.loop import NOT_RENDERED, SimulationResult, StepInterrupted, Stepper
 from seatwin.sim.sensors import GroundTruthSensor, LidarSensor, SimSensor
@@ -116,11 +116,6 @@ def parse_start_time(text: str) -> float:
     if not math.isfinite(t):
         raise ParameterError("time", f"expected a finite start time, got {text!r}")
     return t
-
-
-def _model_of(name: str) -> tuple[str, Any]:
-    key = name.lower()
-    return (key, NOMINAL_DIMENSIONS[key]) if key in NOMINAL_DIMENSIONS else ("generic", None)
 
 
 class _Due:
@@ -213,7 +208,7 @@ class LockstepSimulation:
         placeholder = Trajectory(np.array([0.0, 1.0]), np.zeros(2), np.zeros(2), np.zeros(2), source="seatwin serve")
         vessels = []
         for name in s.vessels:
-            model, dims = _model_of(name)
+            model, dims = model_of_name(name)
             role = Role.OWNSHIP if name == s.ownship else Role.TARGET
             vessels.append(Vessel(name, role, placeholder, model, dims))
         self.scenario = Scenario("served", vessels, origin=RAVNKLOA, seed=s.seed, source="seatwin serve")

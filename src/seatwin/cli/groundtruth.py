@@ -27,7 +27,10 @@ def register(app: typer.Typer) -> None:
             ...,
             "--origin",
             metavar="LAT,LON[,HEIGHT]",
-            help="Geodetic origin of the local NED frame (degrees, metres), e.g. 63.4346,10.3977.",
+            help=(
+                "Geodetic origin of the local NED frame (degrees, metres), e.g. 63.4336,10.3926: Ravnkloa, the frame "
+                "of the Gemini scenarios and of the Ravnkloa land raster's alignment."
+            ),
         ),
         vessel: list[str] = typer.Option(
             ...,
@@ -42,8 +45,11 @@ def register(app: typer.Typer) -> None:
         out: Path = typer.Option(
             ...,
             "--out",
-            metavar="SCENARIO.csv",
-            help="Gemini scenario CSV to write (TimeInSecondsPosix, V{n}x, V{n}y, V{n}Heading).",
+            metavar="SCENARIO.yaml|SCENARIO.csv",
+            help=(
+                "The scenario to write: a scenario YAML (name, ownship, models, origin, harbour) with its Gemini CSV "
+                "beside it, or a Gemini CSV alone (TimeInSecondsPosix, V{n}x, V{n}y, V{n}Heading; no name or origin)."
+            ),
         ),
         rate: float = typer.Option(10.0, "--rate", metavar="HZ", help="Rate of the common clock (Hz)."),
         quality: Path | None = typer.Option(
@@ -94,6 +100,27 @@ def register(app: typer.Typer) -> None:
             metavar="DEG/S",
             help="A one-sample heading spike (> 90° and back) turning faster than this is an error naming the fixes.",
         ),
+        name: str | None = typer.Option(
+            None,
+            "--name",
+            metavar="NAME",
+            help="The scenario's name, with --out NAME.yaml (default: the file's stem; a Gemini CSV holds no name).",
+        ),
+        ownship: str | None = typer.Option(
+            None,
+            "--ownship",
+            metavar="VESSEL",
+            help="The ownship, with --out NAME.yaml (default: the last --vessel, as a Gemini CSV's highest-numbered one).",
+        ),
+        harbour: str | None = typer.Option(
+            None,
+            "--harbour",
+            metavar="HARBOUR",
+            help=(
+                "The scenario's harbour, with --out NAME.yaml: default, ravnkloa, none or a land raster .yaml path "
+                "(default: ravnkloa)."
+            ),
+        ),
         overwrite: bool = overwrite_option(),
     ) -> None:
         from seatwin.cli.parsing import parse_origin, parse_vessel
@@ -101,7 +128,7 @@ def register(app: typer.Typer) -> None:
         from seatwin.groundtruth.pipeline import check_outputs
 
         specs = [parse_vessel(v) for v in vessel]
-        check_outputs(specs, out, quality, plots, overwrite=overwrite)
+        check_outputs(specs, out, quality, plots, overwrite=overwrite, name=name, ownship=ownship, harbour=harbour)
         result = compute_ground_truth(
             specs,
             parse_origin(origin),
@@ -114,7 +141,7 @@ def register(app: typer.Typer) -> None:
             max_speed=max_speed,
             max_turn_rate=max_turn_rate,
         )
-        written = write_outputs(result, out, quality_json=quality, plots_dir=plots)
+        written = write_outputs(result, out, quality_json=quality, plots_dir=plots, name=name, ownship=ownship, harbour=harbour)
         for v_no, v in enumerate(result.vessels, start=1):
             eps = "" if v.eps_gnss is None else f", mean ε_gnss {float(v.eps_gnss.mean()):.3f} m"
             typer.echo(

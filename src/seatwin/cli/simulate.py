@@ -76,6 +76,12 @@ def register(app: typer.Typer) -> None:
         camera_distortion: str | None = typer.Option(
             None, "--camera-distortion", metavar="K1,K2,T1,T2,K3", help="Plumb-bob distortion of the camera images."
         ),
+        figure: Path | None = typer.Option(
+            None,
+            "--figure",
+            metavar="FILE.png",
+            help="Also draw the vessels' tracks over the recorded window and the harbour used, as PNG (outside --out).",
+        ),
         progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar (lines on a pipe)."),
         quiet: bool = typer.Option(False, "--quiet", "-q", hidden=True, help="Old spelling of --no-progress."),
         stream: str | None = typer.Option(
@@ -106,8 +112,16 @@ def register(app: typer.Typer) -> None:
             streamer = SensorStreamer(stream)
         from seatwin.cli.output import split_list
         from seatwin.cli.scenario import _date
-        from seatwin.pipeline.simulate import simulate_run
+        from seatwin.pipeline.simulate import (
+            check_simulation_figure,
+            plot_simulation,
+            simulate_run,
+            simulated_scenario,
+            vessels_on_water,
+        )
 
+        if figure is not None:
+            check_simulation_figure(figure, out, [scenario, radar], overwrite=overwrite)
         viewer = start_live(live_port, live_speed, fmt.value) if live else None
         try:
             result = simulate_run(
@@ -150,6 +164,11 @@ def register(app: typer.Typer) -> None:
         )
         if not result.completed:
             raise typer.Exit(130)
+        water = vessels_on_water(simulated_scenario(result.run_dir))
+        if water is not None:
+            typer.echo("  on water: " + ", ".join(f"{name} {100 * f:.0f} %" for name, f in water.items()))
+        if figure is not None:
+            typer.echo(f"wrote {plot_simulation(result.run_dir, figure, overwrite=True)}")
 
 
 def start_live(port: int, speed: float, fmt: str) -> Any:

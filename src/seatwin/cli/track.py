@@ -3,10 +3,14 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import typer
 
 from seatwin.cli.output import overwrite_option
+
+if TYPE_CHECKING:
+    from seatwin.pipeline.track import TrackingSummary
 
 _HELP = (
     "Track targets in a recording with the JIPDA tracker and extended Kalman filters (thesis ch. 5.1).\n\n"
@@ -93,6 +97,12 @@ def register(app: typer.Typer) -> None:
         classes: str | None = typer.Option(
             None, "--classes", metavar="ID[,ID…]", help="Class ids the onnx detector keeps (default: 8, COCO 'boat')."
         ),
+        figure: Path | None = typer.Option(
+            None,
+            "--figure",
+            metavar="FILE.png",
+            help="Also draw the confirmed tracks from above (with the ground truth and land the recording has) as PNG.",
+        ),
         progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar on long recordings."),
         overwrite: bool = overwrite_option(),
         ignore_crc: bool = typer.Option(
@@ -102,13 +112,16 @@ def register(app: typer.Typer) -> None:
         from seatwin.cli.output import progress_counter, split_list
         from seatwin.errors import ParameterError
         from seatwin.outputs import check_output_file
-        from seatwin.pipeline.track import TrackOptions, track_into_run, track_recording
+        from seatwin.pipeline.track import TrackOptions, plot_tracking, track_into_run, track_recording, tracking_summary
         from seatwin.settings import validated
 
         if out is None and out_bag is None:
             raise ParameterError("out", "nowhere to write the tracks: give --out TRACKS.csv, --out-bag DIR, or both")
         if out is not None:
             check_output_file(out, "out", inputs=[recording, model, tuning, map_spec], overwrite=overwrite)
+        if figure is not None:
+            outputs = [p for p in (out, out_bag) if p is not None]
+            check_output_file(figure, "figure", inputs=[recording, model, tuning, map_spec], overwrite=overwrite, outputs=outputs)
         options = validated(
             TrackOptions,
             dict(
@@ -142,7 +155,30 @@ def register(app: typer.Typer) -> None:
             wrote.append(str(out))
         if copy is not None:
             wrote.append(f"{copy.path} (the run with /tracks/odom, /tracks/markers, /tracks/scene)")
+        summary = tracking_summary(result)
         typer.echo(
             f"{result.n_scans} scans ({', '.join(result.sensors)}), tuning {result.tuning!r}: {result.n_tracks} tracks, "
             f"{result.n_confirmed} confirmed; {result.elapsed_s:.2f} s; wrote {' and '.join(wrote)}"
         )
+        for line in summary_lines(summary):
+            typer.echo(line)
+        if figure is not None:
+            title = f"{recording}: {', '.join(result.sensors)}, tuning {result.tuning}"
+            plot_tracking(result, figure, title=title, overwrite=True)
+            typer.echo(f"wrote {figure}")
+
+
+def summary_lines(summary: TrackingSummary) -> list[str]:
+    """The console lines of a :class:`~seatwin.pipeline.track.TrackingSummary`: per-target coverage, false tracks and
+    tracks on land (each only where the recording has what it needs: ground truth, a water mask)."""
+    s = summary
+    lines: list[str] = []
+    if s.coverage:
+        cov = ", ".join(
+            f"{name} {'never tracked' if c is None or c == 0 else f'{100 * c:.0f} %'}" for name, c in s.coverage.items()
+        )
+        lines.append(f"  targets (share of their time with a confirmed track): {cov}")
+    false = "— (no ground truth in the recording)" if s.false_tracks is None else str(s.false_tracks)
+    land = "— (no water mask)" if s.on_land is None else str(s.on_land)
+    lines.append(f"  confirmed tracks {s.n_confirmed}: false tracks {false}, on land {land}")
+    return lines

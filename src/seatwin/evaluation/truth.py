@@ -192,10 +192,17 @@ def truth_from_recording(path: str | os.PathLike[str]) -> TruthSet:
 
     with open_bag(path) as rec:
         vessels = recording_truth(rec)
-    out = {name: TruthTrack(name, v.time, v.north, v.east, source=str(path)) for name, v in vessels.items() if not v.ownship}
-    if not out:
+    truth = targets_truth(vessels, str(path))
+    if not len(truth):
         raise InputError(path, f"the recording has no target ground truth (vessels: {sorted(vessels)})")
-    return TruthSet(out, source=str(path))
+    return truth
+
+
+def targets_truth(vessels: dict[str, VesselTruth], source: str) -> TruthSet:
+    """The targets (not the ownship) of a recording's vessel truth (:func:`recording_truth`) as a :class:`TruthSet`;
+    velocities re-derived from the positions."""
+    out = {name: TruthTrack(name, v.time, v.north, v.east, source=source) for name, v in vessels.items() if not v.ownship}
+    return TruthSet(out, source=source)
 
 
 def load_truth(spec: str | os.PathLike[str]) -> TruthSet:

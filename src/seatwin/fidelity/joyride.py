@@ -208,7 +208,7 @@ def replica_scene(
     from seatwin.world.vessels import vessel_model
 
     sc = replica_scenario(data, target_size, extra)
-    vessels = {v.name: (vessel_model(v.model, v.dimensions, sc.source), v.trajectory) for v in sc.vessels}
+    vessels = {v.name: (vessel_model(v.model, v.dimensions, sc.source, v.mesh), v.trajectory) for v in sc.vessels}
     return Scene([], vessels)
 
 

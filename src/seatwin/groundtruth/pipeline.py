@@ -33,8 +33,14 @@ from seatwin.groundtruth.vessel import (
     VesselSpec,
     build_vessel,
 )
+from seatwin.scenario.defaults import model_of_name
 from seatwin.scenario.model import Role, Scenario, Trajectory, Vessel
 from seatwin.scenario.plausibility import MAX_SPEED, MAX_TURN_RATE, first_heading_spike, first_teleport
+
+SCENARIO_SUFFIXES = (".yaml", ".yml")
+"""An ``out`` ending so is a scenario YAML (name, roles, models, origin, harbour) with its Gemini CSV beside it."""
+DEFAULT_HARBOUR = "ravnkloa"
+"""The harbour of a scenario YAML written from logs (as of a Gemini CSV read on its own: logs about Ravnkloa)."""
 
 
 @dataclass
@@ -52,10 +58,18 @@ class GroundTruthResult:
         """One trajectory per vessel, in the order given (vessel numbers 1, 2, …)."""
         return [v.trajectory() for v in self.vessels]
 
-    def scenario(self, name: str = "groundtruth", ownship: str | None = None) -> Scenario:
-        """A :class:`Scenario` of the vessels (all targets, except ``ownship`` if named)."""
-        vessels = [Vessel(v.name, Role.OWNSHIP if v.name == ownship else Role.TARGET, v.trajectory()) for v in self.vessels]
-        return Scenario(name, vessels, origin=self.origin, rig=None, source=name)
+    def scenario(self, name: str = "groundtruth", ownship: str | None = None, harbour: str | None = None) -> Scenario:
+        """A :class:`Scenario` of the vessels (all targets, except ``ownship`` if named; a known vessel name gets its
+        model and size, :func:`~seatwin.scenario.defaults.model_of_name`) in ``harbour`` (default :data:`DEFAULT_HARBOUR`)."""
+        check_scenario_options(None, [v.name for v in self.vessels], name, ownship, harbour)
+        harbour = DEFAULT_HARBOUR if harbour is None else harbour
+        vessels = []
+        for v in self.vessels:
+            role = Role.OWNSHIP if v.name == ownship else Role.TARGET
+            vessels.append(Vessel(v.name, role, v.trajectory(), *model_of_name(v.name)))
+        rig = "milliampere" if ownship is not None else None
+        environment = {"harbour": harbour, "water": "flat"}
+        return Scenario(name, vessels, origin=self.origin, rig=rig, source=name, environment=environment)
 
 
 def compute_ground_truth(
@@ -158,6 +172,33 @@ def check_vessel_motion(truth: VesselGroundTruth, max_speed: float = MAX_SPEED, 
         )
 
 
+def check_scenario_options(
+    out: str | os.PathLike[str] | None, vessels: Sequence[str], name: str | None, ownship: str | None, harbour: str | None
+) -> bool:
+    """True when ``out`` is a scenario YAML (None: no file, a scenario in memory); a :class:`ParameterError` for a
+    ``name``/``ownship``/``harbour`` that a Gemini CSV ``out`` cannot hold, an empty name, an ``ownship`` that is not
+    one of ``vessels``, an unknown ``harbour`` or a harbour raster that is not there."""
+    from seatwin.layout.harbours import check_harbour_spec, harbour_name
+
+    as_yaml = out is None or Path(out).suffix.lower() in SCENARIO_SUFFIXES
+    if not as_yaml:
+        for param, value in (("name", name), ("ownship", ownship), ("harbour", harbour)):
+            if value is not None:
+                raise ParameterError(param, f"a Gemini CSV ({out}) holds no {param}; write a scenario .yaml to give one")
+    if name is not None and not name.strip():
+        raise ParameterError("name", "expected a non-empty scenario name")
+    if ownship is not None and ownship not in vessels:
+        raise ParameterError("ownship", f"no vessel named {ownship!r}; vessels are {', '.join(vessels)}")
+    if harbour is not None:
+        try:
+            check_harbour_spec(harbour)
+        except ValueError as e:
+            raise ParameterError("harbour", f"{e}, got {harbour!r}") from None
+        if harbour_name(harbour) is None and not Path(harbour).is_file():
+            raise ParameterError("harbour", f"land raster {harbour!r} not found")
+    return as_yaml
+
+
 def check_outputs(
     vessels: Sequence[VesselSpec],
     out_csv: str | os.PathLike[str],
@@ -165,19 +206,32 @@ def check_outputs(
     plots_dir: str | os.PathLike[str] | None = None,
     *,
     overwrite: bool = False,
+    name: str | None = None,
+    ownship: str | None = None,
+    harbour: str | None = None,
 ) -> None:
     """Refuse, before any work, outputs that would replace an antenna log or each other, or an existing file
-    (unless ``overwrite``), or that cannot be written."""
+    (unless ``overwrite``), or that cannot be written, and scenario options that cannot be honoured
+    (:func:`check_scenario_options`)."""
     from seatwin.groundtruth.plots import plot_names
     from seatwin.outputs import check_output_file, check_output_folder
 
+    check_scenario_options(out_csv, [spec.name for spec in vessels], name, ownship, harbour)
     logs = [f for spec in vessels for f in spec.files]
-    check_output_file(out_csv, "out", inputs=logs, overwrite=overwrite)
+    outs = _scenario_files(out_csv)
+    for i, f in enumerate(outs):
+        check_output_file(f, "out", inputs=logs, overwrite=overwrite, outputs=outs[:i])
     if quality_json is not None:
-        check_output_file(quality_json, "quality_json", inputs=logs, overwrite=overwrite, outputs=[out_csv])
+        check_output_file(quality_json, "quality_json", inputs=logs, overwrite=overwrite, outputs=outs)
     if plots_dir is not None:
         names = plot_names([spec.name for spec in vessels])
-        check_output_folder(plots_dir, "plots_dir", names, inputs=[*logs, out_csv, quality_json], overwrite=overwrite)
+        check_output_folder(plots_dir, "plots_dir", names, inputs=[*logs, *outs, quality_json], overwrite=overwrite)
+
+
+def _scenario_files(out: str | os.PathLike[str]) -> list[Path]:
+    """The files ``out`` stands for: a Gemini CSV, or a scenario YAML and the CSV beside it."""
+    p = Path(out)
+    return [p, p.with_suffix(".csv")] if p.suffix.lower() in SCENARIO_SUFFIXES else [p]
 
 
 def write_outputs(
@@ -185,23 +239,43 @@ def write_outputs(
     out_csv: str | os.PathLike[str],
     quality_json: str | os.PathLike[str] | None = None,
     plots_dir: str | os.PathLike[str] | None = None,
+    *,
+    name: str | None = None,
+    ownship: str | None = None,
+    harbour: str | None = None,
 ) -> list[Path]:
-    """Write the Gemini CSV, and optionally the quality report and figures; all or nothing (check them first
+    """Write the scenario, and optionally the quality report and figures; all or nothing (check them first
     with :func:`check_outputs`).
+
+    ``out_csv`` ending in ``.csv`` is a Gemini CSV (no name: a reader names it after the file; its last vessel is
+    the ownship); ending in ``.yaml``/``.yml`` it is a scenario YAML with the CSV beside it, named ``name`` (default:
+    the file's stem), ``ownship`` (default: the last vessel, as in a Gemini CSV) the ownship, in ``harbour`` (default
+    :data:`DEFAULT_HARBOUR`). ``name``/``ownship``/``harbour`` with a CSV are a :class:`ParameterError` (a CSV cannot
+    hold them).
 
     Returns the paths written.
     """
     from seatwin.groundtruth.report import quality_report
     from seatwin.scenario.gemini_csv import write_gemini_csv
+    from seatwin.scenario.yaml_format import write_scenario_yaml
 
     out_csv = Path(out_csv)
+    as_yaml = check_scenario_options(out_csv, [v.name for v in result.vessels], name, ownship, harbour)
     pending: list[tuple[Path, Path]] = []  # (temporary, final)
     tmp_dirs: list[Path] = []
     try:
         out_csv.parent.mkdir(parents=True, exist_ok=True)
-        tmp = out_csv.with_name(f".{out_csv.name}.tmp")
-        write_gemini_csv(tmp, result.trajectories(), time=result.time)
-        pending.append((tmp, out_csv))
+        if as_yaml:
+            own = ownship if ownship is not None else result.vessels[-1].name
+            scenario = result.scenario(name if name is not None else out_csv.stem, own, harbour)
+            staging_out = Path(tempfile.mkdtemp(prefix=f".{out_csv.name}.", dir=out_csv.parent))
+            tmp_dirs.append(staging_out)
+            for f in write_scenario_yaml(scenario, staging_out / out_csv.name):
+                pending.append((f, out_csv.with_name(f.name)))
+        else:
+            tmp = out_csv.with_name(f".{out_csv.name}.tmp")
+            write_gemini_csv(tmp, result.trajectories(), time=result.time)
+            pending.append((tmp, out_csv))
         if quality_json is not None:
             qpath = Path(quality_json)
             qpath.parent.mkdir(parents=True, exist_ok=True)

@@ -54,16 +54,20 @@ def write_plots(result: Any, folder: str | Path) -> list[Path]:
             fig = _new_figure(5.5, 5.5)
             ax = fig.add_subplot()
             bad = v.eps_gnss > v.eps_threshold_m
-            ax.scatter(v.rel_east[~bad], v.rel_north[~bad], s=3, label="ε_gnss ≤ threshold")
+            ax.scatter(v.rel_east[~bad], v.rel_north[~bad], s=3, label=r"$\varepsilon_{gnss}$ ≤ threshold")
             if bad.any():
-                ax.scatter(v.rel_east[bad], v.rel_north[bad], s=3, color="tab:red", label="flagged (ε_gnss > threshold)")
+                ax.scatter(
+                    v.rel_east[bad], v.rel_north[bad], s=3, color="tab:red", label=r"flagged ($\varepsilon_{gnss}$ > threshold)"
+                )
             a = np.linspace(0, 2 * np.pi, 361)
-            ax.plot(v.baseline_m * np.sin(a), v.baseline_m * np.cos(a), "k-", lw=1, label=f"|Q_r| = {v.baseline_m:.2f} m")
+            ax.plot(v.baseline_m * np.sin(a), v.baseline_m * np.cos(a), "k-", lw=1, label=f"$|Q_r|$ = {v.baseline_m:.2f} m")
             ax.set_aspect("equal")
-            ax.set_xlabel("y_sb − y_ss (east) [m]")
-            ax.set_ylabel("x_sb − x_ss (north) [m]")
+            ax.set_xlabel(r"$y_{sb} - y_{ss}$ (east) [m]")
+            ax.set_ylabel(r"$x_{sb} - x_{ss}$ (north) [m]")
             ax.set_title(f"{v.name}: relative antenna positions")
-            ax.legend(loc="upper right", fontsize=7)
+            # Below the axes: in a corner it covered the baseline circle's arc.
+            ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.14), ncols=2, fontsize=7, frameon=False)
+            fig.set_layout_engine("constrained")
             path = folder / f"{stem}_relative_positions.png"
             fig.savefig(path)
             written.append(path)
@@ -73,7 +77,7 @@ def write_plots(result: Any, folder: str | Path) -> list[Path]:
             ax.plot(t, v.eps_gnss, lw=0.8)
             ax.axhline(v.eps_threshold_m, color="tab:red", ls="--", lw=1, label=f"threshold {v.eps_threshold_m:g} m")
             ax.set_xlabel(f"time since {t0:.1f} (POSIX) [s]")
-            ax.set_ylabel("ε_gnss [m] (eq. 3.7)")
+            ax.set_ylabel(r"$\varepsilon_{gnss}$ [m] (eq. 3.7)")
             ax.set_title(f"{v.name}: relative error between GNSS receivers")
             ax.legend(fontsize=7)
             fig.tight_layout()

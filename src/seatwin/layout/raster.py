@@ -104,3 +104,37 @@ def read_land_raster(path: str | Path) -> LandRaster:
         resolution=res,
         source=str(bin_path),
     )
+
+
+def write_land_raster(raster: LandRaster, path: str | Path) -> tuple[Path, Path]:
+    """Write ``raster`` as ``NAME.yaml`` + ``NAME.bin`` (the format :func:`read_land_raster` reads; its alignment is
+    not written: a raster's alignment lives in ``NAME.alignment.yaml``); both through temporary files renamed at the
+    end, missing folders made. ``path`` is either file's name."""
+    import os
+
+    p = Path(path)
+    meta_path, bin_path = p.with_suffix(".yaml"), p.with_suffix(".bin")
+    rows, cols = raster.water.shape
+    p.parent.mkdir(parents=True, exist_ok=True)
+    meta = (
+        f"# A land/water raster: {bin_path.name} holds map_height rows of map_width uint8 cells (1 = water, 0 = land),\n"
+        "# row 0 the southern edge; cell (r, c) covers north origin_y_coordinate + r·grid_resolution and east\n"
+        "# origin_x_coordinate + c·grid_resolution [m] in the scenario's local frame.\n"
+        f"map_width: {cols}\nmap_height: {rows}\ngrid_resolution: {float(raster.resolution)!r}\n"
+        f"origin_x_coordinate: {float(raster.origin_east)!r}\norigin_y_coordinate: {float(raster.origin_north)!r}\n"
+    )
+    written = []
+    try:
+        for final, write in (
+            (bin_path, lambda f: f.write_bytes(np.ascontiguousarray(raster.water, dtype=np.uint8).tobytes())),
+            (meta_path, lambda f: f.write_text(meta, encoding="utf-8")),
+        ):
+            tmp = final.with_name(f".{final.name}.part")
+            written.append(tmp)
+            write(tmp)
+        for tmp, final in zip(written, (bin_path, meta_path), strict=True):
+            os.replace(tmp, final)
+    finally:
+        for tmp in written:
+            tmp.unlink(missing_ok=True)
+    return meta_path, bin_path

@@ -3,7 +3,10 @@
 The simulation chain lives here:
 
 * :func:`simulate_run` — a scenario → a recording (:mod:`.simulate`; default sensors :data:`DEFAULT_SENSORS`);
+  :func:`simulated_scenario`, :func:`vessels_on_water`, :func:`plot_simulation` — what a run recorded, shown;
 * :func:`track_recording`, :func:`track_scans` — a recording or scans → tracks (:mod:`.track`);
+  :func:`tracking_summary`, :func:`plot_tracking` — a tracking run in numbers (coverage, false tracks, on land) and
+  drawn;
 * :func:`evaluate_run` — tracks vs ground truth (:mod:`.evaluate`);
 * :func:`compare_runs` — a real vs a synthetic dataset (:mod:`.compare`);
 * :func:`simulate_radar` — the radar alone (:mod:`.radar`); :func:`lidar_snapshot`, :func:`camera_snapshot`,
@@ -21,7 +24,7 @@ holds every verb's call (``seatwin <verb>`` only parses, calls one or two of the
 :func:`write_fidelity`), ``serve`` (:func:`serve`), ``record-stream`` (:func:`record_stream`),
 ``cosim`` (:func:`export_system`, :func:`run_system`), ``bag repair`` (:func:`repair_bag`), ``bag convert``
 (:func:`convert_bag`), ``view`` (:class:`RecordingViewer`), ``harbour fit-alignment`` (:func:`fit_harbour_alignment`,
-:func:`write_alignment`).
+:func:`write_alignment`), ``harbour rasterize`` (:func:`land_raster_from_geojson`, :func:`write_land_raster`).
 
 Every import is lazy — a name's module is loaded when the name is first used — so the CLI starts fast,
 and the packages that build on this one (campaign, sweep, fidelity) load only when one of their names is.
@@ -34,10 +37,16 @@ from typing import Any
 # name → "module" (the same name there) or "module:attribute"
 _EXPORTS = {
     "simulate_run": "seatwin.pipeline.simulate",
+    "simulated_scenario": "seatwin.pipeline.simulate",
+    "vessels_on_water": "seatwin.pipeline.simulate",
+    "plot_simulation": "seatwin.pipeline.simulate",
     "DEFAULT_SENSORS": "seatwin.defaults",
     "TrackOptions": "seatwin.pipeline.track",
     "TrackingResult": "seatwin.pipeline.track",
     "track_recording": "seatwin.pipeline.track",
+    "TrackingSummary": "seatwin.pipeline.track",
+    "tracking_summary": "seatwin.pipeline.track",
+    "plot_tracking": "seatwin.pipeline.track",
     "track_scans": "seatwin.pipeline.track",
     "evaluate_run": "seatwin.pipeline.evaluate",
     "CompareResult": "seatwin.pipeline.compare",
@@ -78,6 +87,8 @@ _EXPORTS = {
     "RecordingViewer": "seatwin.recording.view",
     "fit_harbour_alignment": "seatwin.scenario.on_water",
     "write_alignment": "seatwin.layout.alignment",
+    "land_raster_from_geojson": "seatwin.layout.polygons",
+    "write_land_raster": "seatwin.layout.raster",
 }
 
 __all__ = sorted(_EXPORTS)

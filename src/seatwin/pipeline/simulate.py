@@ -70,3 +70,58 @@ def simulate_run(
         overwrite=overwrite,
         **changes,
     )
+
+
+def simulated_scenario(run_dir: str | Path) -> Scenario:
+    """The scenario a run recorded, cut to its recorded window and in the harbour it was simulated in (its
+    manifest's ``metadata``: ``start``, ``end``, ``harbour``); an :class:`~seatwin.errors.InputError` for a folder
+    that is not a seatwin run."""
+    import dataclasses
+
+    from seatwin.errors import InputError
+    from seatwin.recording.manifest import read_manifest
+    from seatwin.scenario.load import load_scenario
+
+    run = Path(run_dir)
+    manifest = read_manifest(run)
+    meta = (manifest or {}).get("metadata") or {}
+    if not manifest or "start" not in meta or "end" not in meta or not manifest.get("scenario"):
+        raise InputError(run, "not a seatwin simulate run (no manifest.json with the scenario and its recorded window)")
+    sc = load_scenario(run / str(manifest["scenario"]))
+    t0, t1 = float(meta["start"]), float(meta["end"])
+    vessels = [dataclasses.replace(v, trajectory=v.trajectory.sliced(t0, t1)) for v in sc.vessels]
+    harbour = meta.get("harbour", sc.environment.get("harbour", "default"))
+    return dataclasses.replace(sc, vessels=vessels, environment={**sc.environment, "harbour": harbour})
+
+
+def vessels_on_water(scenario: Scenario) -> dict[str, float] | None:
+    """Each vessel's share of samples on its harbour's water (None for open water, or a raster that cannot be found)."""
+    from seatwin.scenario.summary import scenario_harbour_map, water_fraction
+
+    harbour = scenario_harbour_map(scenario)
+    if harbour is None:
+        return None
+    return {v.name: water_fraction(v.trajectory.north, v.trajectory.east, harbour) for v in scenario.vessels}
+
+
+def check_simulation_figure(
+    figure: str | Path, run_dir: str | Path, inputs: list[str | Path | None], *, overwrite: bool = False
+) -> None:
+    """Refuse, before a run, a ``figure`` path that :func:`plot_simulation` could not write afterwards: inside the run
+    folder ``run_dir`` (the folder is the run's), an input, an existing file (unless ``overwrite``)."""
+    from seatwin.errors import ParameterError
+    from seatwin.outputs import check_output_file
+
+    if Path(figure).resolve().is_relative_to(Path(run_dir).resolve()):
+        raise ParameterError("figure", f"{figure} lies inside the run folder {run_dir}; write the figure outside it")
+    check_output_file(figure, "figure", inputs=[*inputs, run_dir], overwrite=overwrite)
+
+
+def plot_simulation(run_dir: str | Path, out: str | Path, *, overwrite: bool = False) -> Path:
+    """Draw a run's vessels over the recorded window, over the harbour it was simulated in, into the PNG ``out``
+    (:func:`seatwin.scenario.plot.plot_scenario`; an existing file only with ``overwrite``)."""
+    from seatwin.outputs import check_output_file
+    from seatwin.scenario.plot import plot_scenario
+
+    check_output_file(out, "figure", inputs=[run_dir], overwrite=overwrite)
+    return plot_scenario(simulated_scenario(run_dir), out)

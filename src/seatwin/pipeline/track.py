@@ -20,7 +20,7 @@ from seatwin.errors import InputError
 from seatwin.settings import Settings, validated
 
 if TYPE_CHECKING:
-    from seatwin.evaluation import Tracks
+    from seatwin.evaluation import Tracks, TruthSet
     from seatwin.perception.map_mask import WaterMask
     from seatwin.perception.measurements import Scan
     from seatwin.tracking import TrackerConfig
@@ -76,6 +76,66 @@ class TrackingResult:
     elapsed_s: float
     bad_crc: int = 0
     """MCAP chunks read despite a CRC mismatch (``ignore_crc``)."""
+    truth: TruthSet | None = None
+    """The targets' ground truth the recording carries (None: it has none, as a real dataset)."""
+    water: WaterMask | None = None
+    """The water mask used (None: none), for tracks on land."""
+
+
+@dataclass(frozen=True)
+class TrackingSummary:
+    """What a tracking run found, in a few numbers: confirmed tracks, each target's coverage and the false tracks
+    (with ground truth), and the confirmed tracks whose mean position is on land (with a water mask)."""
+
+    n_scans: int
+    n_tracks: int
+    n_confirmed: int
+    coverage: dict[str, float | None]
+    """Per target: the share of its instants with a confirmed track associated (empty without ground truth)."""
+    false_tracks: int | None
+    """Confirmed tracks never associated with a target (None without ground truth)."""
+    on_land: int | None
+    """Confirmed tracks whose mean position is on land (None without a water mask)."""
+
+
+def tracking_summary(result: TrackingResult, gate: float = 10.0) -> TrackingSummary:
+    """:class:`TrackingSummary` of ``result``: targets associated within ``gate`` [m] (:func:`seatwin.evaluation.evaluate`)."""
+    import numpy as np
+
+    from seatwin.evaluation import evaluate
+
+    tracks = result.tracks.confirmed_only()
+    on_land = None
+    if result.water is not None:
+        on_land = 0
+        for k in np.unique(tracks.track_id):
+            rows = tracks.track_id == k
+            n, e = tracks.state[rows][:, 0].mean(), tracks.state[rows][:, 2].mean()
+            on_land += int(not result.water.is_water(float(n), float(e)))
+    coverage: dict[str, float | None] = {}
+    false = None
+    if result.truth is not None and len(result.truth) and len(result.tracks.scan_times):
+        ev = evaluate(result.tracks, result.truth, gate=gate, mask=result.water)
+        coverage = {s.target: s.coverage for s in ev.summaries}
+        false = None if ev.false_tracks is None else ev.false_tracks.n_tracks
+    return TrackingSummary(result.n_scans, result.n_tracks, result.n_confirmed, coverage, false, on_land)
+
+
+def plot_tracking(result: TrackingResult, out: str | Path, *, title: str | None = None, overwrite: bool = False) -> Path:
+    """Draw ``result``'s confirmed tracks (and the targets' ground truth, and the land of its water mask) from above
+    into the PNG ``out`` (an existing one only with ``overwrite``)."""
+    from seatwin.outputs import check_output_file, write_bytes_atomic
+    from seatwin.report.figures import tracking_figure
+
+    out = Path(out)
+    if out.suffix.lower() != ".png":
+        from seatwin.errors import ParameterError
+
+        raise ParameterError("figure", f"the figure is written as PNG: give a file name ending in .png, got {str(out)!r}")
+    check_output_file(out, "figure", overwrite=overwrite)
+    name = title or f"tracks ({', '.join(result.sensors)}, tuning {result.tuning})"
+    write_bytes_atomic(out, tracking_figure(result.tracks, result.truth, result.water, name))
+    return out
 
 
 def track_scans(
@@ -184,6 +244,7 @@ def track_recording(
     path = Path(recording)
     if not path.exists():
         raise InputError(path, "no such recording (a run directory, rosbag2 directory, or .mcap/.db3/.bag file)")
+    from seatwin.evaluation.truth import targets_truth
     from seatwin.perception.camera_frames import camera_detector
     from seatwin.perception.from_recording import scans_from_recording
     from seatwin.perception.lidar import LidarClustering
@@ -209,13 +270,14 @@ def track_recording(
         wanted = options.sensors if options.sensors is not None else default_sensors(rec)
         for s in wanted:
             cfg.sensor(s)  # the tuning must cover every sensor used
+        vessels = vessel_truth(rec)
         found = scans_from_recording(
             rec,
             wanted,
             mask=mask,
             lidar=LidarClustering(eps=options.eps, min_points=options.min_points),
             radar=radar,
-            truth=vessel_truth(rec),
+            truth=vessels,
             camera=camera,
         )
         done = 0
@@ -239,6 +301,8 @@ def track_recording(
         len(np.unique(tracks.track_id[tracks.confirmed])),
         _time.perf_counter() - t_start,
         bad_crc,
+        None if vessels is None else targets_truth(vessels, str(path)),
+        water,
     )
 
 

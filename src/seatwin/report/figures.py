@@ -23,9 +23,14 @@ def _plt() -> ModuleType:
     return plt
 
 
+FIGURE_DPI = 144
+"""Pixels per inch of the report's figures: a figure 8 inches wide is 1152 pixels, shown 960 CSS pixels wide
+(:data:`seatwin.report.html.PIXELS_PER_CSS_PX`), sharp on high-density screens."""
+
+
 def to_png(fig) -> bytes:  # noqa: ANN001
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=90, bbox_inches="tight")
+    fig.savefig(buf, format="png", dpi=FIGURE_DPI, bbox_inches="tight", pad_inches=0.08)
     _plt().close(fig)
     return buf.getvalue()
 
@@ -227,4 +232,45 @@ def ahed_figure(rows: list[dict], title: str) -> bytes:
     ax.grid(alpha=0.3, axis="y")
     ax.legend(fontsize=8)
     ax.set_title(title)
+    return to_png(fig)
+
+
+def tracking_figure(tracks, truth, mask, title: str) -> bytes:  # noqa: ANN001 - Tracks, TruthSet | None, water mask | None
+    """A tracking run from above: every confirmed track (a line, its start a dot), the targets' ground truth (green,
+    named at their start) and the land of ``mask`` (grey), east to the right and north up."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(8.0, 7.0), layout="constrained")
+    conf = tracks.confirmed_only()
+    pts = [np.empty((0, 2))]
+    ids = np.unique(conf.track_id)
+    cmap = plt.get_cmap("tab10")
+    for i, k in enumerate(ids):
+        rows = conf.track_id == k
+        e, n = conf.state[rows, 2], conf.state[rows, 0]
+        ax.plot(e, n, "-", color=cmap(i % 10), lw=1.4, zorder=3, label="confirmed tracks" if i == 0 else None)
+        ax.plot(e[:1], n[:1], "o", color=cmap(i % 10), ms=4, zorder=4)
+        pts.append(np.column_stack([e, n]))
+    if truth is not None:
+        for j, (name, tr) in enumerate(truth.targets.items()):
+            ax.plot(tr.east, tr.north, "--", color=COLORS["truth"], lw=1.2, zorder=2, label="ground truth" if j == 0 else None)
+            start = (tr.east[0], tr.north[0])
+            ax.annotate(name, start, fontsize=8, color=COLORS["truth"], xytext=(4, 4), textcoords="offset points")
+            pts.append(np.column_stack([tr.east, tr.north]))
+    allp = np.concatenate(pts)
+    if len(allp):
+        lo, hi = allp.min(axis=0), allp.max(axis=0)
+        pad = max(20.0, 0.1 * float(np.max(hi - lo)))
+        extent = (lo[0] - pad, hi[0] + pad, lo[1] - pad, hi[1] + pad)
+        if mask is not None:
+            _land(ax, mask, extent)
+        ax.set_xlim(extent[0], extent[1])
+        ax.set_ylim(extent[2], extent[3])
+    ax.set_xlabel("east [m]")
+    ax.set_ylabel("north [m]")
+    ax.set_aspect("equal")
+    ax.grid(alpha=0.3)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(loc="best", fontsize=8)
+    land = ", land grey" if mask is not None else ""
+    ax.set_title(f"{title}\n{len(ids)} confirmed tracks{land}", fontsize=10)
     return to_png(fig)

@@ -25,7 +25,7 @@ body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:2em auto;m
 h1{font-size:1.6em}h2{border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:2em}h3{margin-top:1.5em}
 table{border-collapse:collapse;margin:.8em 0;font-size:.9em}th,td{border:1px solid #ccc;padding:.25em .6em;text-align:right}
 th{background:#f3f3f3}td.l,th.l{text-align:left}tr.avg td{font-weight:bold;background:#fafafa}
-img{max-width:100%;display:block;margin:.5em 0}.note{color:#555;font-size:.9em}code{background:#f5f5f5;padding:0 .2em}
+img{max-width:100%;height:auto;display:block;margin:.5em 0}.note{color:#555;font-size:.9em}code{background:#f5f5f5;padding:0 .2em}
 """
 
 # Marks the page as rendered once every embedded figure has decoded (read by tests in a headless browser).
@@ -35,6 +35,10 @@ window.addEventListener('load', function () {
   var imgs = Array.prototype.slice.call(document.images);
   var ok = imgs.filter(function (i) { return i.complete && i.naturalWidth > 0; }).length;
   document.body.setAttribute('data-figures', ok + '/' + imgs.length);
+  document.body.setAttribute('data-figure-widths', imgs.map(function (i) {
+    return Math.round(i.getBoundingClientRect().width) + ':' + i.naturalWidth;
+  }).join(','));
+  document.body.setAttribute('data-content-width', Math.round(parseFloat(getComputedStyle(document.body).width)));
 });
 </script>
 """
@@ -65,8 +69,21 @@ class ScenarioResult:
     """The ``camera`` block of ``seatwin compare`` (lidar vs lidar + camera, boxes); see :func:`camera_section`."""
 
 
+PIXELS_PER_CSS_PX = 1.2
+"""A figure's PNG pixels per CSS pixel on the page (the page narrows a wider one to its column)."""
+
+
+def png_size(png: bytes) -> tuple[int, int]:
+    """(width, height) in pixels from a PNG's IHDR chunk."""
+    if png[:8] != b"\x89PNG\r\n\x1a\n" or png[12:16] != b"IHDR":
+        raise ValueError("not a PNG")
+    return int.from_bytes(png[16:20], "big"), int.from_bytes(png[20:24], "big")
+
+
 def _img(png: bytes, alt: str) -> str:
-    return f'<img alt="{html.escape(alt)}" src="data:image/png;base64,{base64.b64encode(png).decode("ascii")}">'
+    width = round(png_size(png)[0] / PIXELS_PER_CSS_PX)
+    data = base64.b64encode(png).decode("ascii")
+    return f'<img alt="{html.escape(alt)}" style="width:{width}px" src="data:image/png;base64,{data}">'
 
 
 def _f(x: object, spec: str = ".4f") -> str:

@@ -20,3 +20,10 @@ NOMINAL_DIMENSIONS: dict[str, Dimensions] = {
 }
 """Nominal overall sizes [m] of the thesis vessels (milliAmpere about 5 × 2.8 m; Havfruen a cabin
 cruiser, Finn a small fishing boat), set on the built-ins and on vessels read from a Gemini CSV."""
+
+
+def model_of_name(name: str) -> tuple[str, Dimensions | None]:
+    """The 3-D model and nominal size of a vessel known by ``name`` (case ignored: ``Finn`` → ``finn``), else
+    ``("generic", None)``."""
+    key = name.lower()
+    return (key, NOMINAL_DIMENSIONS[key]) if key in NOMINAL_DIMENSIONS else ("generic", None)

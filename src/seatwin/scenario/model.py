@@ -17,6 +17,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from seatwin.errors import InputError
 from seatwin.geo import GeodeticOrigin, unwrap, wrap_to_pi
+from seatwin.mesh_placement import MeshPlacement
 
 
 class Role(str, Enum):
@@ -144,6 +145,8 @@ class Vessel:
     model: str = "generic"
     """Name of the 3-D model (``seatwin.world`` builds it) or a mesh file path."""
     dimensions: Dimensions | None = None
+    mesh: MeshPlacement | None = None
+    """Scale, yaw, offset and axes of a mesh file ``model`` (None: as the file is, z up, in metres)."""
 
 
 @dataclass

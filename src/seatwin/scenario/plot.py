@@ -122,7 +122,9 @@ def plot_scenario(scenario: Scenario, out: str | os.PathLike[str], tick_s: float
         note = ""
         if isinstance(harbour, LandRaster):
             _draw_raster(ax, harbour)
-            note = f"\n(land: {Path(harbour.source).stem}; {100 * min(on_water):.0f}–{100 * max(on_water):.0f} % on water)"
+            lo_pc, hi_pc = f"{100 * min(on_water):.0f}", f"{100 * max(on_water):.0f}"
+            span = lo_pc if lo_pc == hi_pc else f"{lo_pc}–{hi_pc}"
+            note = f"\n(land: {Path(harbour.source).stem}; vessels {span} % on water)"
         elif harbour is DEFAULT_LAYOUT and min(on_water) < 0.95:
             note = "\n(tracks leave the default harbour's water: its outline is not drawn)"
         elif harbour is DEFAULT_LAYOUT:

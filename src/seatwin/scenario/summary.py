@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import datetime as dt
 from itertools import combinations
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from seatwin.errors import InputError
 from seatwin.layout import DEFAULT_LAYOUT, HarbourLayout, LandRaster, harbour_map
+from seatwin.mesh_placement import is_mesh_path
 from seatwin.scenario.model import Scenario, Trajectory
 
 
@@ -78,7 +80,7 @@ def scenario_summary(scenario: Scenario) -> dict[str, Any]:
             {
                 "name": v.name,
                 "role": v.role.value,
-                "model": v.model,
+                "model": Path(v.model).name if is_mesh_path(v.model) else v.model,
                 "dimensions": None if v.dimensions is None else vars(v.dimensions).copy(),
                 "samples": int(len(tr.time)),
                 "rate_hz": round(tr.rate_hz, 3),

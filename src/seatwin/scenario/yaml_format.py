@@ -14,6 +14,8 @@ Example::
       - {name: Havfruen, role: target, column: 1, model: havfruen}
       - {name: milliAmpere, role: ownship, column: 3, model: milliampere,
          dimensions: {length: 5.0, beam: 2.8, height: 2.6}}
+      - {name: Mine, role: target, column: 2, model: boat.obj,    # a mesh file, relative to this file
+         mesh: {scale: 0.01, yaw_deg: 90, offset: [0, 0, 0.2], z_up: true}}   # optional (defaults: 1, 0, 0s, true)
 
 ``column`` is the vessel number n of the CSV's ``V{n}x, V{n}y, V{n}Heading``; every vessel of
 the CSV must be listed. Unknown keys are errors (so typos do not pass silently).
@@ -27,17 +29,19 @@ from pathlib import Path
 from typing import Annotated, Any, Literal
 
 import yaml
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationInfo, field_validator
 
 from seatwin.errors import InputError
 from seatwin.geo import GeodeticOrigin
 from seatwin.layout import HARBOUR_NAMES, harbour_name
+from seatwin.mesh_placement import MESH_SUFFIXES, MeshPlacement, is_mesh_path
 from seatwin.safe_yaml import Lines, line_of, load_yaml
 from seatwin.scenario.defaults import RAVNKLOA
 from seatwin.scenario.gemini_csv import MAX_SPEED, check_max_speed, read_gemini_csv, write_gemini_csv
 from seatwin.scenario.model import Dimensions, Role, Scenario, Vessel
 
 Positive = Annotated[float, Field(gt=0, allow_inf_nan=False)]
+Finite = Annotated[float, Field(allow_inf_nan=False)]
 
 
 class _Strict(BaseModel):
@@ -63,12 +67,29 @@ class DimensionsSpec(_Strict):
     height: Positive
 
 
+class MeshSpec(_Strict):
+    scale: Positive = Field(1.0, description="file units → metres (0.01 for a mesh in centimetres)")
+    yaw_deg: float = Field(0.0, allow_inf_nan=False, description="turn clockwise seen from above so the bow is +x")
+    offset: tuple[Finite, Finite, Finite] = Field((0.0, 0.0, 0.0), description="forward, starboard, down [m]")
+    z_up: bool = Field(True, description="the file's axes: x forward, y left, z up (else x forward, y starboard, z down)")
+
+
 class VesselSpec(_Strict):
     name: str = Field(min_length=1)
     role: Role
     column: int = Field(ge=1, description="n of the CSV columns V{n}x, V{n}y, V{n}Heading")
-    model: str = Field("generic", min_length=1, description="3-D model name or mesh path")
+    model: str = Field("generic", min_length=1, description="3-D model name or mesh path (relative to this file)")
     dimensions: DimensionsSpec | None = None
+    mesh: MeshSpec | None = None
+
+    @field_validator("mesh")
+    @classmethod
+    def _mesh_needs_a_file(cls, mesh: MeshSpec | None, info: ValidationInfo) -> MeshSpec | None:
+        model = info.data.get("model")
+        if mesh is not None and isinstance(model, str) and not is_mesh_path(model):
+            files = ", ".join(MESH_SUFFIXES)
+            raise ValueError(f"mesh (scale, yaw_deg, offset, z_up) needs a mesh file model ({files}), got {model!r}")
+        return mesh
 
 
 class ScenarioSpec(_Strict):
@@ -162,10 +183,11 @@ def read_scenario_yaml(path: str | os.PathLike[str], date: dt.date | None = None
             name=v.name,
             role=v.role,
             trajectory=trajectories[v.column],
-            model=v.model,
+            model=_mesh_file(path, v.model, i) if is_mesh_path(v.model) else v.model,
             dimensions=None if v.dimensions is None else Dimensions(**v.dimensions.model_dump()),
+            mesh=None if v.mesh is None else MeshPlacement(v.mesh.scale, v.mesh.yaw_deg, tuple(v.mesh.offset), v.mesh.z_up),
         )
-        for v in spec.vessels
+        for i, v in enumerate(spec.vessels)
     ]
     origin = RAVNKLOA if spec.origin is None else GeodeticOrigin(spec.origin.lat, spec.origin.lon, spec.origin.height)
     return Scenario(
@@ -178,6 +200,26 @@ def read_scenario_yaml(path: str | os.PathLike[str], date: dt.date | None = None
         source=str(path),
         description=spec.description,
     )
+
+
+def _mesh_file(path: Path, model: str, index: int) -> str:
+    """A vessel's mesh file, relative to the scenario file ``path``; one relative to the current folder is used only
+    when none is beside the scenario (an older scenario's way); neither is an :class:`InputError` naming both."""
+    p = Path(model).expanduser()
+    candidates = [p] if p.is_absolute() else [(path.parent / p).resolve(), p.resolve()]
+    for c in candidates:
+        if c.is_file():
+            return str(c)
+    looked = " or ".join(dict.fromkeys(str(c) for c in candidates))
+    raise InputError(path, f"mesh file {model!r} not found (looked for {looked})", where=f"field vessels[{index}].model")
+
+
+def _relative(target: str, folder: Path) -> str:
+    """``target`` relative to ``folder`` (absolute on another drive)."""
+    try:
+        return os.path.relpath(Path(target).resolve(), folder.resolve())
+    except ValueError:  # another drive on Windows
+        return str(Path(target).resolve())
 
 
 def csv_order(scenario: Scenario) -> list[Vessel]:
@@ -208,10 +250,7 @@ def write_scenario_yaml(
     harbour = str(scenario.environment.get("harbour", "default"))
     harbour = harbour_name(harbour) or harbour
     if harbour not in HARBOUR_NAMES:
-        try:
-            harbour = os.path.relpath(Path(harbour).resolve(), path.parent.resolve())
-        except ValueError:  # another drive on Windows
-            harbour = str(Path(harbour).resolve())
+        harbour = _relative(harbour, path.parent)
     data: dict[str, Any] = {"name": scenario.name}
     if scenario.description:
         data["description"] = scenario.description
@@ -226,10 +265,15 @@ def write_scenario_yaml(
         data["date"] = date
     data["vessels"] = []
     for n, v in enumerate(ordered, start=1):
-        entry: dict[str, Any] = {"name": v.name, "role": v.role.value, "column": n, "model": v.model}
+        model = _relative(v.model, path.parent) if is_mesh_path(v.model) else v.model
+        entry: dict[str, Any] = {"name": v.name, "role": v.role.value, "column": n, "model": model}
         if v.dimensions is not None:
             d = v.dimensions
             entry["dimensions"] = {"length": float(d.length), "beam": float(d.beam), "height": float(d.height)}
+        if v.mesh is not None:
+            m = v.mesh
+            entry["mesh"] = {"scale": float(m.scale), "yaw_deg": float(m.yaw_deg), "offset": [float(x) for x in m.offset]}
+            entry["mesh"]["z_up"] = bool(m.z_up)
         data["vessels"].append(entry)
     tmp = path.with_name(path.name + ".part")
     try:

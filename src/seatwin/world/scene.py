@@ -169,7 +169,7 @@ class Scene:
             if harbour is not None:  # the caller's override is at fault, not the scenario
                 raise ParameterError("harbour", exc.detail if exc.source is None else f"{exc.source}: {exc.detail}") from exc
             raise InputError(scenario.source, exc.detail, where=exc.where) from exc
-        vessels = {v.name: (vessel_model(v.model, v.dimensions, scenario.source), v.trajectory) for v in scenario.vessels}
+        vessels = {v.name: (vessel_model(v.model, v.dimensions, scenario.source, v.mesh), v.trajectory) for v in scenario.vessels}
         return cls(static, vessels, backend, threads)
 
     @property

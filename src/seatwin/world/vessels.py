@@ -32,6 +32,7 @@ import trimesh
 
 from seatwin.errors import InputError
 from seatwin.geo.frames import FLU_TO_FRD, yaw_matrix
+from seatwin.mesh_placement import MeshPlacement, is_mesh_path
 from seatwin.world.shapes import block, hull, merge, prism
 
 REFLECTIVITY = {
@@ -160,11 +161,16 @@ def load_mesh(
     return trimesh.Trimesh(v, np.asarray(mesh.faces), process=False)
 
 
-def vessel_model(model: str, dimensions: object | None = None, source: str | None = None) -> VesselModel:
-    """The model named ``model`` (built-in name, case-insensitive) or loaded from a mesh file.
+def vessel_model(
+    model: str, dimensions: object | None = None, source: str | None = None, mesh: MeshPlacement | None = None
+) -> VesselModel:
+    """The model named ``model`` (built-in name, case-insensitive) or loaded from a mesh file, placed in the body
+    frame by ``mesh`` (:class:`~seatwin.scenario.model.MeshPlacement`: scale, yaw, offset, axes).
 
     ``generic`` (or an unknown-but-empty name) uses ``dimensions`` (length, beam, height) when given.
     """
+    if mesh is not None and not is_mesh_path(model):
+        raise InputError(source, f"mesh placement (scale, yaw, offset) given for model {model!r}, which is not a mesh file")
     key = _ALIASES.get(model.strip().lower(), model.strip().lower())
     if key == "generic":
         if dimensions is not None:
@@ -173,8 +179,9 @@ def vessel_model(model: str, dimensions: object | None = None, source: str | Non
         return generic()
     if key in BUILTIN_MODELS:
         return BUILTIN_MODELS[key]()
-    if Path(model).suffix.lower() in {".obj", ".stl", ".ply", ".glb", ".gltf", ".off"}:
-        return VesselModel(Path(model).stem, load_mesh(model))
+    if is_mesh_path(model):
+        m = mesh or MeshPlacement()
+        return VesselModel(Path(model).stem, load_mesh(model, m.scale, m.offset, m.yaw_deg, m.z_up))
     raise InputError(
         source,
         f"unknown vessel model {model!r}; expected one of {sorted(BUILTIN_MODELS)} or a mesh file (.obj/.stl/.ply/.glb)",
