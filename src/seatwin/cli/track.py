@@ -155,7 +155,7 @@ def register(app: typer.Typer) -> None:
             wrote.append(str(out))
         if copy is not None:
             wrote.append(f"{copy.path} (the run with /tracks/odom, /tracks/markers, /tracks/scene)")
-        summary = tracking_summary(result)
+        summary = tracking_summary(result, recording=recording, map_spec=map_spec)
         typer.echo(
             f"{result.n_scans} scans ({', '.join(result.sensors)}), tuning {result.tuning!r}: {result.n_tracks} tracks, "
             f"{result.n_confirmed} confirmed; {result.elapsed_s:.2f} s; wrote {' and '.join(wrote)}"

@@ -77,16 +77,20 @@ def evaluate_run(
     run = tracks if isinstance(tracks, Tracks) else read_tracks(tracks)
     truth_set = truth if not isinstance(truth, str | Path) else load_truth(truth)
     check_overlap(run, truth_set, str(run.source))
+    mask, moored = harbour_of(map_spec, truth if isinstance(truth, str | Path) else None)
+    ignored = moored_vessels(moored, truth_set, run.time)
+    return evaluate(run, truth_set, gate=gate, confirmed_only=confirmed_only, confidence=confidence, mask=mask, dont_care=ignored)
+
+
+def harbour_of(map_spec: str | Path | None, run_dir: str | Path | None) -> tuple[object | None, NDArray[np.float64]]:
+    """The water mask and the moored boats' (n, 2) positions of ``map_spec``, or else of the harbour the run directory
+    ``run_dir``'s manifest names (none for anything else)."""
     if map_spec is not None:
         from seatwin.layout import moored_boat_positions
         from seatwin.perception.map_mask import load_mask
 
-        mask, moored = load_mask(map_spec), moored_boat_positions(map_spec)
-    else:
-        own = truth if isinstance(truth, str | Path) else None
-        mask, moored = recording_mask(own), recording_moored_boats(own)
-    ignored = moored_vessels(moored, truth_set, run.time)
-    return evaluate(run, truth_set, gate=gate, confirmed_only=confirmed_only, confidence=confidence, mask=mask, dont_care=ignored)
+        return load_mask(map_spec), moored_boat_positions(map_spec)
+    return recording_mask(run_dir), recording_moored_boats(run_dir)
 
 
 def moored_vessels(points: NDArray[np.float64], truth: TruthSet, times: NDArray[np.float64] | None = None) -> TruthSet | None:

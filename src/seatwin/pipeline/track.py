@@ -93,16 +93,21 @@ class TrackingSummary:
     coverage: dict[str, float | None]
     """Per target: the share of its instants with a confirmed track associated (empty without ground truth)."""
     false_tracks: int | None
-    """Confirmed tracks never associated with a target (None without ground truth)."""
+    """Confirmed tracks never associated with a target nor following a moored boat (None without ground truth)."""
     on_land: int | None
     """Confirmed tracks whose mean position is on land (None without a water mask)."""
 
 
-def tracking_summary(result: TrackingResult, gate: float = 10.0) -> TrackingSummary:
-    """:class:`TrackingSummary` of ``result``: targets associated within ``gate`` [m] (:func:`seatwin.evaluation.evaluate`)."""
+def tracking_summary(
+    result: TrackingResult, gate: float = 10.0, recording: str | Path | None = None, map_spec: str | Path | None = None
+) -> TrackingSummary:
+    """:class:`TrackingSummary` of ``result``: targets associated within ``gate`` [m] (:func:`seatwin.evaluation.evaluate`);
+    tracks on the moored boats of ``map_spec``'s harbour, or else of the harbour the ``recording``'s manifest names,
+    are don't-care, not false (as :func:`seatwin.pipeline.evaluate.evaluate_run` counts them)."""
     import numpy as np
 
     from seatwin.evaluation import evaluate
+    from seatwin.pipeline.evaluate import harbour_of, moored_vessels
 
     tracks = result.tracks.confirmed_only()
     on_land = None
@@ -115,7 +120,8 @@ def tracking_summary(result: TrackingResult, gate: float = 10.0) -> TrackingSumm
     coverage: dict[str, float | None] = {}
     false = None
     if result.truth is not None and len(result.truth) and len(result.tracks.scan_times):
-        ev = evaluate(result.tracks, result.truth, gate=gate, mask=result.water)
+        moored = moored_vessels(harbour_of(map_spec, recording)[1], result.truth, result.tracks.time)
+        ev = evaluate(result.tracks, result.truth, gate=gate, mask=result.water, dont_care=moored)
         coverage = {s.target: s.coverage for s in ev.summaries}
         false = None if ev.false_tracks is None else ev.false_tracks.n_tracks
     return TrackingSummary(result.n_scans, result.n_tracks, result.n_confirmed, coverage, false, on_land)
