@@ -203,7 +203,7 @@ class StreamRecorder:
         azimuth = np.asarray(r.azimuth, np.float32) if len(r.azimuth) else np.full(ns, np.nan, np.float32)
         t = float(times[0])
         img = np.frombuffer(r.radarSpokes, np.uint8).reshape(ns, nr)
-        self.writer.write_image(SPOKES_TOPIC, "radar", t, img, "mono8")
+        self.writer.write_image(SPOKES_TOPIC, "radar", t, img, "mono8", image_format="raw")  # data, not a picture
         spokes = pack(
             SPOKE_LAYOUT,
             azimuth=azimuth,
@@ -296,22 +296,32 @@ class RecorderHandle:
 
 
 def record_stream(
-    run_dir: str | Path, *, port: int = 50052, host: str = "127.0.0.1", fmt: str = "mcap", ownship: str | None = "milliAmpere"
+    run_dir: str | Path,
+    *,
+    port: int = 50052,
+    host: str = "127.0.0.1",
+    fmt: str = "mcap",
+    ownship: str | None = "milliAmpere",
+    compression: str | None = None,
+    image_format: str = "raw",
 ) -> RecorderHandle:
-    """Start a ``SensorStreaming`` + ``Navigation`` server recording into the new run directory ``run_dir``."""
+    """Start a ``SensorStreaming`` + ``Navigation`` server recording into the new run directory ``run_dir``
+    (``compression``, ``image_format``: the camera images', as :class:`~seatwin.recording.RecordingWriter`)."""
     import grpc
 
     from seatwin.api.server import STREAM_MAX_MESSAGE_BYTES, bind, check_port, server_options
     from seatwin.recording import RecordingWriter
+    from seatwin.recording.config import check_compression, check_format, check_image_format
     from seatwin.recording.manifest import MANIFEST_NAME
     from seatwin.scenario.defaults import RAVNKLOA
 
     check_port(port)
+    options = {"compression": check_compression(check_format(fmt), compression), "image_format": check_image_format(image_format)}
     run_dir = Path(run_dir)
     if (run_dir / MANIFEST_NAME).exists():
         raise InputError(run_dir, "a recording exists here already; choose a new run directory")
     run_dir.mkdir(parents=True, exist_ok=True)
-    writer = RecordingWriter(run_dir, fmt, origin=RAVNKLOA, metadata={"recorded_by": "seatwin record-stream"})
+    writer = RecordingWriter(run_dir, fmt, origin=RAVNKLOA, metadata={"recorded_by": "seatwin record-stream"}, **options)
     recorder = StreamRecorder(writer, ownship)
     server = grpc.server(futures.ThreadPoolExecutor(max_workers=8), options=server_options(STREAM_MAX_MESSAGE_BYTES))
     servicer = _Servicer(recorder)

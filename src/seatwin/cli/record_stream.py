@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from seatwin.cli.output import overwrite_option
+from seatwin.cli.output import compression_option, image_format_option, overwrite_option
 from seatwin.cli.simulate import BagFormat
 
 
@@ -18,6 +18,8 @@ def register(app: typer.Typer) -> None:
         host: str = typer.Option("127.0.0.1", "--host", help="Address to listen on (default loopback only)."),
         ownship: str = typer.Option("milliAmpere", "--ownship", help="Vessel whose navigation messages also give a NavSatFix."),
         fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Bag format."),
+        compression: str | None = compression_option(),
+        image_format: str = image_format_option(),
         overwrite: bool = overwrite_option(),
     ) -> None:
         """Serve sensorstreaming.SensorStreaming and navigation.Navigation; record every message into a ROS bag.
@@ -34,7 +36,9 @@ def register(app: typer.Typer) -> None:
 
         remove_outputs(check_new_run(out, "out", overwrite=overwrite))
         with interrupts_set_event() as stop:  # before the address is announced: a signal right after it finishes the bag
-            handle = record_stream(out, port=port, host=host, fmt=fmt.value, ownship=ownship)
+            handle = record_stream(
+                out, port=port, host=host, fmt=fmt.value, ownship=ownship, compression=compression, image_format=image_format
+            )
             typer.echo(f"serving SensorStreaming + Navigation on {handle.address}; recording into {out} (Ctrl-C to finish)")
             try:
                 wait(stop)

@@ -391,10 +391,13 @@ class Recording:
             return
         for m in self.messages(names):
             with self._standard_fields(m):
-                if m.msgtype == IMAGE:
-                    px, enc, cf = image_to_array(m.msg, f"{self.bag} {m.topic}"), str(m.msg.encoding), None
-                else:
-                    (px, enc), cf = decode_compressed(m.msg, f"{self.bag} {m.topic}"), str(m.msg.format)
+                try:
+                    if m.msgtype == IMAGE:
+                        px, enc, cf = image_to_array(m.msg), str(m.msg.encoding), None
+                    else:
+                        (px, enc), cf = decode_compressed(m.msg), str(m.msg.format)
+                except InputError as exc:
+                    raise InputError(self.bag, f"{exc.detail} (message at {m.log_time_ns} ns)", where=m.topic) from None
                 frame = ImageFrame(m.topic, stamp_s(m.msg.header.stamp), m.msg.header.frame_id, px, enc, cf, m.log_time_ns)
             yield frame
 

@@ -8,9 +8,9 @@ from __future__ import annotations
 import math
 from typing import Literal
 
-from pydantic import Field, field_validator
+from pydantic import Field, field_validator, model_validator
 
-from seatwin.defaults import DEFAULT_ROS_DISTRO, DEFAULT_SENSORS
+from seatwin.defaults import DEFAULT_IMAGE_FORMAT, DEFAULT_ROS_DISTRO, DEFAULT_SENSORS
 from seatwin.layout.harbours import check_harbour_spec
 from seatwin.settings import Settings
 
@@ -70,6 +70,16 @@ class SimulationSettings(Settings):
         description="ROS 2 distribution a rosbag2 bag (mcap, sqlite3) is written for: its metadata version "
         "(humble 5, iron 7, jazzy and kilted 9); a distro reads its own version and older ones.",
     )
+    compression: Literal["zstd", "lz4", "bz2", "none"] | None = Field(
+        None,
+        description="Chunk compression of the bag: mcap zstd (default), lz4 or none; ros1 lz4 (default), bz2 or "
+        "none; sqlite3 none. None: the format's default.",
+    )
+    image_format: Literal["raw", "jpeg", "png"] = Field(
+        DEFAULT_IMAGE_FORMAT,
+        description="Camera images as sensor_msgs/Image bgr8 (raw, as the thesis) or sensor_msgs/CompressedImage "
+        "(jpeg quality 90, png) on <image topic>/compressed.",
+    )
     ground_truth_rate_hz: float = Field(10.0, gt=0, description="Rate of the ground-truth topics [Hz].")
 
     @field_validator("mount_yaw_bias_deg")
@@ -78,6 +88,13 @@ class SimulationSettings(Settings):
         if not math.isfinite(v):
             raise ValueError("expected a finite angle in degrees")
         return v
+
+    @model_validator(mode="after")
+    def _compression_of_format(self) -> SimulationSettings:
+        from seatwin.recording.config import check_compression
+
+        check_compression(self.fmt, self.compression)
+        return self
 
     @field_validator("harbour")
     @classmethod
