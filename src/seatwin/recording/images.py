@@ -39,6 +39,13 @@ def to_rgb(pixels: NDArray[np.uint8], encoding: str) -> NDArray[np.uint8]:
     return pixels
 
 
+def to_bgr(pixels: NDArray[np.uint8], encoding: str) -> NDArray[np.uint8]:
+    """H×W×3 bgr8 from pixels in ``encoding`` (rgb8 reversed, mono8 repeated, bgr8 as it is)."""
+    if encoding in ("bgr8", "8UC3"):
+        return pixels
+    return np.ascontiguousarray(to_rgb(pixels, encoding)[..., ::-1])
+
+
 def _pil() -> Any:
     try:
         from PIL import Image
