@@ -157,8 +157,7 @@ def simulate_scenario(
         on_frame=on_frame,
         writer_kwargs={
             "ros_distro": settings.ros_distro,
-            "compression": settings.compression,
-            "image_format": settings.image_format,
+            **settings.writer_options(),
             "origin": scenario.origin,
             "seed": scenario.seed,
             "scenario_file": yaml_path,

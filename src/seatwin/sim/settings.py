@@ -19,7 +19,33 @@ LIDAR_MODES = ("raycast", "depthbuffer", "depthbuffer-legacy", "depthbuffer-plan
 BAG_FORMATS = ("mcap", "sqlite3", "ros1")
 
 
-class SimulationSettings(Settings):
+class BagOptions(Settings):
+    """How a run's bag is written beyond its format (``fmt``, a field of the subclass): chunk compression and image format."""
+
+    compression: Literal["zstd", "lz4", "bz2", "none"] | None = Field(
+        None,
+        description="Chunk compression of the bag: mcap zstd (default), lz4 or none; ros1 lz4 (default), bz2 or "
+        "none; sqlite3 none. None: the format's default.",
+    )
+    image_format: Literal["raw", "jpeg", "png"] = Field(
+        DEFAULT_IMAGE_FORMAT,
+        description="Camera images as sensor_msgs/Image bgr8 (raw, as the thesis) or sensor_msgs/CompressedImage "
+        "(jpeg quality 90, png) on <image topic>/compressed.",
+    )
+
+    @model_validator(mode="after")
+    def _compression_of_format(self) -> BagOptions:
+        from seatwin.recording.config import check_compression
+
+        check_compression(getattr(self, "fmt", "mcap"), self.compression)
+        return self
+
+    def writer_options(self) -> dict[str, str | None]:
+        """The :class:`~seatwin.recording.RecordingWriter` keywords these settings choose."""
+        return {"compression": self.compression, "image_format": self.image_format}
+
+
+class SimulationSettings(BagOptions):
     """Every choice of ``simulate`` besides the scenario and the time window."""
 
     sensors: tuple[Literal["lidar", "radar", "camera"], ...] = Field(
@@ -70,16 +96,6 @@ class SimulationSettings(Settings):
         description="ROS 2 distribution a rosbag2 bag (mcap, sqlite3) is written for: its metadata version "
         "(humble 5, iron 7, jazzy and kilted 9); a distro reads its own version and older ones.",
     )
-    compression: Literal["zstd", "lz4", "bz2", "none"] | None = Field(
-        None,
-        description="Chunk compression of the bag: mcap zstd (default), lz4 or none; ros1 lz4 (default), bz2 or "
-        "none; sqlite3 none. None: the format's default.",
-    )
-    image_format: Literal["raw", "jpeg", "png"] = Field(
-        DEFAULT_IMAGE_FORMAT,
-        description="Camera images as sensor_msgs/Image bgr8 (raw, as the thesis) or sensor_msgs/CompressedImage "
-        "(jpeg quality 90, png) on <image topic>/compressed.",
-    )
     ground_truth_rate_hz: float = Field(10.0, gt=0, description="Rate of the ground-truth topics [Hz].")
 
     @field_validator("mount_yaw_bias_deg")
@@ -88,13 +104,6 @@ class SimulationSettings(Settings):
         if not math.isfinite(v):
             raise ValueError("expected a finite angle in degrees")
         return v
-
-    @model_validator(mode="after")
-    def _compression_of_format(self) -> SimulationSettings:
-        from seatwin.recording.config import check_compression
-
-        check_compression(self.fmt, self.compression)
-        return self
 
     @field_validator("harbour")
     @classmethod
