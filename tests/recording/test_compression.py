@@ -279,3 +279,17 @@ def test_decode_accepts_only_jpeg_and_png() -> None:
     with pytest.raises(InputError, match="cannot decode the 'bmp' image"):
         decode_compressed(msg)
     assert transport_format("jpg", "rgb8") == "rgb8; jpeg compressed bgr8"
+
+
+def test_serve_cosim_and_record_stream_take_the_same_options(tmp_path: Path) -> None:
+    from seatwin.api.lockstep import LockstepSettings
+    from seatwin.api.streaming import record_stream
+    from seatwin.settings import validated
+
+    s = validated(LockstepSettings, {"fmt": "ros1", "compression": "bz2", "image_format": "jpeg"})
+    assert s.writer_options() == {"compression": "bz2", "image_format": "jpeg"}
+    with pytest.raises(ParameterError, match="not a compression of ros1 bags"):
+        validated(LockstepSettings, {"fmt": "ros1", "compression": "zstd"})
+    with pytest.raises(ParameterError, match="not a compression of mcap bags"):
+        record_stream(tmp_path / "r", port=0, compression="bz2")
+    assert not (tmp_path / "r").exists()
