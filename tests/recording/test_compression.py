@@ -293,3 +293,44 @@ def test_serve_cosim_and_record_stream_take_the_same_options(tmp_path: Path) -> 
     with pytest.raises(ParameterError, match="not a compression of mcap bags"):
         record_stream(tmp_path / "r", port=0, compression="bz2")
     assert not (tmp_path / "r").exists()
+
+
+_SEED_BAGS: dict[tuple[str, str], bytes] = {}
+
+
+def _seed_bag(tmp: Path, fmt: str, compression: str) -> bytes:
+    """The bytes of a small compressed bag (built once per format and compression)."""
+    key = (fmt, compression)
+    if key not in _SEED_BAGS:
+        run = _write(tmp / f"seed-{fmt}-{compression}", fmt, compression, n=6)
+        _SEED_BAGS[key] = next(p for p in run.rglob("*") if p.suffix in (".mcap", ".bag")).read_bytes()
+    return _SEED_BAGS[key]
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(
+    combo=st.sampled_from([("mcap", "zstd"), ("mcap", "lz4"), ("ros1", "lz4"), ("ros1", "bz2")]),
+    flips=st.lists(st.tuples(st.floats(0, 1), st.integers(1, 255)), min_size=1, max_size=8),
+    cut=st.one_of(st.none(), st.floats(0.05, 1)),
+)
+def test_damaged_compressed_bags_read_or_fail_cleanly(
+    tmp_path_factory: pytest.TempPathFactory, combo: tuple[str, str], flips: list[tuple[float, int]], cut: float | None
+) -> None:
+    """Bytes flipped anywhere in a compressed bag (chunk payloads, their headers, the index), and the bag cut
+    short: reading every message and image either works or is one InputError naming the bag."""
+    fmt, compression = combo
+    data = bytearray(_seed_bag(tmp_path_factory.getbasetemp(), fmt, compression))
+    for where, mask in flips:
+        data[min(int(where * len(data)), len(data) - 1)] ^= mask
+    if cut is not None:
+        data = data[: int(cut * len(data))]
+    path = tmp_path_factory.mktemp("m") / ("bag.mcap" if fmt == "mcap" else "bag.bag")
+    path.write_bytes(bytes(data))
+    try:
+        with open_bag(path) as rec:
+            for _ in rec.messages():
+                pass
+            for _ in rec.images():
+                pass
+    except InputError as exc:
+        assert "\n" not in str(exc) and str(path.name) in str(exc), str(exc)
