@@ -101,9 +101,15 @@ def test_round_trip_each_format_and_compression(tmp_path: Path, fmt: str, compre
 
 
 def test_defaults_are_zstd_for_mcap_and_lz4_for_ros1(tmp_path: Path) -> None:
+    from seatwin.recording.info import bag_info, format_info
+
     for fmt, want in (("mcap", "zstd"), ("ros1", "lz4"), ("sqlite3", "none")):
         with open_bag(_write(tmp_path / fmt, fmt, n=2)) as rec:
             assert rec.manifest["compression"] == want and rec.manifest["image_format"] == "raw"
+            files = [rec.bag] if rec.bag.is_file() else [p for p in rec.bag.rglob("*") if p.is_file()]
+        info = bag_info(tmp_path / fmt)
+        assert info["size_bytes"] == sum(p.stat().st_size for p in files)
+        assert f"MB  ({want} chunks, raw images)" in format_info(info)
 
 
 @pytest.mark.parametrize(
