@@ -107,6 +107,7 @@ def compare(sc: object, args: argparse.Namespace) -> None:
     """Every variant of ``--compare`` ``--repeats`` times in turn; the best wall and CPU time of each; ratios to the first."""
     variants = args.compare.split(",")
     runs: dict[str, list[dict[str, float]]] = {v: [] for v in variants}
+    _run(sc, argparse.Namespace(**{**vars(args), "duration": min(2.0, args.duration)}), variants[0])  # warm-up: caches, imports
     for _ in range(args.repeats):
         for v in variants:
             runs[v].append(_run(sc, args, v))

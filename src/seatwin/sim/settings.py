@@ -10,7 +10,7 @@ from typing import Literal
 
 from pydantic import Field, field_validator, model_validator
 
-from seatwin.defaults import DEFAULT_IMAGE_FORMAT, DEFAULT_ROS_DISTRO, DEFAULT_SENSORS
+from seatwin.defaults import DEFAULT_IMAGE_FORMAT, DEFAULT_ROS_DISTRO, DEFAULT_SENSORS, Compression, ImageFormat
 from seatwin.layout.harbours import check_harbour_spec
 from seatwin.settings import Settings
 
@@ -22,12 +22,12 @@ BAG_FORMATS = ("mcap", "sqlite3", "ros1")
 class BagOptions(Settings):
     """How a run's bag is written beyond its format (``fmt``, a field of the subclass): chunk compression and image format."""
 
-    compression: Literal["zstd", "lz4", "bz2", "none"] | None = Field(
+    compression: Compression | None = Field(
         None,
         description="Chunk compression of the bag: mcap zstd (default), lz4 or none; ros1 lz4 (default), bz2 or "
         "none; sqlite3 none. None: the format's default.",
     )
-    image_format: Literal["raw", "jpeg", "png"] = Field(
+    image_format: ImageFormat = Field(
         DEFAULT_IMAGE_FORMAT,
         description="Camera images as sensor_msgs/Image bgr8 (raw, as the thesis) or sensor_msgs/CompressedImage "
         "(jpeg quality 90, png) on <image topic>/compressed.",
