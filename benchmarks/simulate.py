@@ -8,6 +8,12 @@ encoding messages and ``recording_write_s`` handing them to the bag, flushes inc
 ``recording_share`` = recording_s / wall_s (target ≤ 0.10).
 Prints JSON on its last line. Usage: python benchmarks/simulate.py [--duration S] [--preset NAME] [--sensors LIST]
 (``--sensors`` default ``lidar``, this benchmark's subject; ``lidar,camera`` is simulate's default run).
+
+Bag size (issue #23): ``--compare none/raw,default`` runs the same simulation once per variant
+(``COMPRESSION/IMAGE_FORMAT``; ``default`` = seatwin's defaults, zstd chunks and raw images), ``--repeats``
+times in turn (A B A B …, so a slow spell of a shared machine hits all alike), and prints per variant the bag
+size, the best wall time, the real-time factor and the process CPU time, and their ratios to the first
+variant: ``python benchmarks/simulate.py --sensors lidar,camera --preset vlp16 --compare none/raw,default``.
 """
 
 from __future__ import annotations
@@ -31,8 +37,13 @@ def main() -> None:
     ap.add_argument("--preset", default="vlp16-thesis")
     ap.add_argument("--sensors", default="lidar")
     ap.add_argument("--lidar-mode", default="raycast")
+    ap.add_argument("--compare", default=None, help="variants COMPRESSION/IMAGE_FORMAT or 'default', comma-separated")
+    ap.add_argument("--repeats", type=int, default=2)
     args = ap.parse_args()
     sc = builtin_scenario(args.scenario)
+    if args.compare:
+        compare(sc, args)
+        return
     with tempfile.TemporaryDirectory() as tmp:
         res = simulate_scenario(
             sc,
@@ -67,6 +78,62 @@ def main() -> None:
         "ratio_to_sweeps_only": round(res.wall_s / sweeps_only, 2),
     }
     print(json.dumps(out))
+
+
+def _run(sc: object, args: argparse.Namespace, variant: str) -> dict[str, float]:
+    """One simulation with ``variant``'s compression and image format: wall, CPU time, RTF, bag size."""
+    extra = {}
+    if variant != "default":
+        compression, image_format = variant.split("/")
+        extra = {"compression": compression, "image_format": image_format}
+    with tempfile.TemporaryDirectory() as tmp:
+        cpu0 = time.process_time()
+        res = simulate_scenario(
+            sc,
+            Path(tmp) / "run",
+            duration=args.duration,
+            lidar_preset=args.preset,
+            lidar_mode=args.lidar_mode,
+            sensors=tuple(args.sensors.split(",")),
+            progress=False,
+            **extra,
+        )
+        cpu = time.process_time() - cpu0
+        size = sum(p.stat().st_size for p in (Path(tmp) / "run").rglob("*") if p.is_file())
+    return {"wall_s": res.wall_s, "cpu_s": cpu, "rtf": res.realtime_factor, "recording_s": res.recording_s, "bag_mb": size / 1e6}
+
+
+def compare(sc: object, args: argparse.Namespace) -> None:
+    """Every variant of ``--compare`` ``--repeats`` times in turn; the best wall and CPU time of each; ratios to the first."""
+    variants = args.compare.split(",")
+    runs: dict[str, list[dict[str, float]]] = {v: [] for v in variants}
+    _run(sc, argparse.Namespace(**{**vars(args), "duration": min(2.0, args.duration)}), variants[0])  # warm-up: caches, imports
+    for _ in range(args.repeats):
+        for v in variants:
+            runs[v].append(_run(sc, args, v))
+    base: dict[str, float] | None = None
+    table = {}
+    for v in variants:
+        r = runs[v]
+        best = {
+            "bag_mb": round(r[0]["bag_mb"], 2),
+            "wall_s": round(min(x["wall_s"] for x in r), 3),
+            "cpu_s": round(min(x["cpu_s"] for x in r), 3),
+            "realtime_factor": round(max(x["rtf"] for x in r), 3),
+            "recording_s": round(min(x["recording_s"] for x in r), 3),
+            "walls_s": [round(x["wall_s"], 2) for x in r],
+        }
+        base = base or best
+        best["size_ratio"] = round(best["bag_mb"] / base["bag_mb"], 4)
+        best["rtf_ratio"] = round(best["realtime_factor"] / base["realtime_factor"], 3)
+        best["cpu_ratio"] = round(best["cpu_s"] / base["cpu_s"], 3)
+        table[v] = best
+        print(
+            f"{v:>12}: {best['bag_mb']:8.2f} MB  RTF {best['realtime_factor']:6.2f} (x{best['rtf_ratio']:.3f})"
+            f"  CPU {best['cpu_s']:.2f} s (x{best['cpu_ratio']:.3f})"
+        )
+    info = {"scenario": args.scenario, "sensors": args.sensors, "preset": args.preset, "duration_s": args.duration}
+    print(json.dumps({**info, "repeats": args.repeats, "variants": table}))
 
 
 if __name__ == "__main__":

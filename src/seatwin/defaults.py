@@ -19,3 +19,22 @@ rosbag2's ``bag_metadata.hpp`` on each distro's branch; docs/architecture/record
 A bag is written in its distro's version."""
 DEFAULT_ROS_DISTRO: RosDistro = "humble"
 """The oldest supported LTS: Humble reads no metadata of version 9 (its QoS lists), and every later distro reads 5."""
+
+Compression = Literal["zstd", "lz4", "bz2", "none"]
+COMPRESSIONS: dict[str, tuple[str, ...]] = {"mcap": ("zstd", "lz4", "none"), "sqlite3": ("none",), "ros1": ("lz4", "bz2", "none")}
+"""Bag format → the compressions seatwin writes, its default first: MCAP chunks (zstd, lz4), ROS 1 chunks (lz4,
+bz2; what ``rosbag record --lz4|--bz2`` writes). SQLite3: none (rosbag2's per-message zstd is not written yet)."""
+DEFAULT_COMPRESSION: dict[str, str] = {fmt: names[0] for fmt, names in COMPRESSIONS.items()}
+"""The compression a bag gets when none is asked for: zstd (MCAP), lz4 (ROS 1), none (SQLite3)."""
+ZSTD_LEVEL = 1
+"""zstd level of compressed MCAP chunks: zstd's fastest regular level (rosbag2's ``zstd_fast`` preset), ~9× on
+seatwin's raw camera images at ~2 ms an image (level 3: ~10×, ~40 % more time; docs/validation.md)."""
+
+ImageFormat = Literal["raw", "jpeg", "png"]
+IMAGE_FORMATS: tuple[str, ...] = ("raw", "jpeg", "png")
+"""Camera images as ``sensor_msgs/Image`` (raw, the thesis's bgr8) or ``sensor_msgs/CompressedImage`` (jpeg, png)
+on ``<image topic>/compressed`` (image_transport's convention)."""
+DEFAULT_IMAGE_FORMAT: ImageFormat = "raw"
+"""Raw bgr8, as the thesis records: with zstd chunks the default run is already far below 80 MB."""
+JPEG_QUALITY = 90
+"""Pillow's JPEG quality for ``--image-format jpeg``, fixed (Pillow's default is 75)."""

@@ -311,7 +311,18 @@ def make_seeds(root: Path) -> dict[str, Path]:
     runs = root / "runs"
     for fmt, name in (("ros1", "recording.bag"), ("mcap", "recording.mcap"), ("sqlite3", "recording.db3")):
         run = runs / fmt
-        simulate_run("ferry_crossing", run, sensors=("radar",), fmt=fmt, duration=1.0, progress=False, ground_truth_rate_hz=2.0)
+        # uncompressed chunks, as before zstd/lz4 became the defaults: the families mutate the records inside them (the
+        # bomb family writes compressed chunks itself)
+        simulate_run(
+            "ferry_crossing",
+            run,
+            sensors=("radar",),
+            fmt=fmt,
+            duration=1.0,
+            progress=False,
+            ground_truth_rate_hz=2.0,
+            compression="none",
+        )
         src = next(run.rglob(name))
         seeds[fmt] = shutil.copy(src, _own_dir(root, fmt) / name)
         if fmt == "mcap":

@@ -373,10 +373,22 @@ def test_inflate_never_exceeds_what_is_declared(payload: bytes, declared: int, k
 
 
 # ----------------------------------------------------------------------------- 4. CRCs
-def _mcap_run(tmp_path: Path) -> tuple[Path, Path]:
+def _mcap_run(tmp_path: Path, compression: str = "none") -> tuple[Path, Path]:
     run = tmp_path / "run"
-    write_run(run, "mcap", n_sweeps=35)  # a flush (a closed chunk) every second of recorded time
+    write_run(run, "mcap", n_sweeps=35, compression=compression)  # a flush (a closed chunk) every second of recorded time
     return run, next((run / "recording").glob("*.mcap"))
+
+
+def _inflate(kind: str, payload: bytes) -> bytes:
+    if kind == "":
+        return payload
+    if kind == "lz4":
+        from lz4.frame import decompress
+
+        return decompress(payload)
+    import zstandard
+
+    return zstandard.ZstdDecompressor().decompress(payload)  # needs the content size in the frame header
 
 
 def _chunks(data: bytes) -> list[int]:
@@ -390,17 +402,41 @@ def _chunks(data: bytes) -> list[int]:
         pos += 9 + length
 
 
-def test_written_crcs_are_right(tmp_path: Path) -> None:
-    _, mcap = _mcap_run(tmp_path)
+@pytest.mark.parametrize("compression", ["none", "zstd", "lz4"])
+def test_written_crcs_are_right(tmp_path: Path, compression: str) -> None:
+    from mcap.reader import make_reader
+
+    run, mcap = _mcap_run(tmp_path, compression)
     data = mcap.read_bytes()
     chunks = _chunks(data)
     assert len(chunks) >= 3
     for at in chunks:
         usize, crc = struct.unpack_from("<QI", data, at + 9 + 16)
         (clen,) = struct.unpack_from("<I", data, at + 9 + 28)
+        kind = data[at + 9 + 32 : at + 9 + 32 + clen].decode()
+        assert kind == ("" if compression == "none" else compression)
+        (rlen,) = struct.unpack_from("<Q", data, at + 9 + 32 + clen)
         start = at + 9 + 32 + clen + 8
-        assert crc != 0 and crc == zlib.crc32(data[start : start + usize])
+        records = _inflate(kind, data[start : start + rlen])
+        assert len(records) == usize and crc != 0 and crc == zlib.crc32(records)
     assert check_mcap(mcap).bad_crc == 0
+    with mcap.open("rb") as f:  # the mcap library's own reader, every chunk's CRC checked
+        reader = make_reader(f, validate_crcs=True)
+        got = [(ch.topic, m.log_time, bytes(m.data)) for _, ch, m in reader.iter_messages(log_time_order=False)]
+    with open_bag(run) as rec:
+        assert got == [(t, ts, bytes(d)) for t, _, ts, d in rec.raw_messages()]
+
+
+@pytest.mark.parametrize("compression", ["zstd", "lz4"])
+def test_flipped_byte_in_a_compressed_chunk_is_caught(tmp_path: Path, compression: str) -> None:
+    run, mcap = _mcap_run(tmp_path, compression)
+    data = bytearray(mcap.read_bytes())
+    at = _chunks(bytes(data))[1]
+    (clen,) = struct.unpack_from("<I", data, at + 9 + 28)
+    (rlen,) = struct.unpack_from("<Q", data, at + 9 + 32 + clen)
+    data[at + 9 + 32 + clen + 8 + rlen // 2] ^= 0x10  # inside the compressed records
+    mcap.write_bytes(bytes(data))
+    _fails(run, "corrupt MCAP", f"Chunk at byte {at}")
 
 
 def test_flipped_byte_in_a_chunk_is_caught(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

@@ -54,8 +54,8 @@ def as_rosbags(monkeypatch: pytest.MonkeyPatch) -> str:
     return "rosbags"
 
 
-def _ours(fmt: str, path: Path, ros_distro: str = "jazzy") -> None:
-    st = open_storage(fmt, path, typestore(fmt), ros_distro=ros_distro)
+def _ours(fmt: str, path: Path, ros_distro: str = "jazzy", compression: str = "none") -> None:
+    st = open_storage(fmt, path, typestore(fmt), ros_distro=ros_distro, compression=compression)
     conns = {}
     for step in _script():
         if step[0] == "add":

@@ -47,9 +47,9 @@ from seatwin.layout.harbours import check_harbour_spec
 from seatwin.recording.manifest import MANIFEST_NAME
 from seatwin.scenario import Role, Scenario, Trajectory, Vessel
 from seatwin.scenario.defaults import OWNSHIP_NAME, RAVNKLOA, TARGETS_BY_COLUMN, model_of_name
-from seatwin.settings import Settings
 from seatwin.sim.loop import NOT_RENDERED, SimulationResult, StepInterrupted, Stepper
 from seatwin.sim.sensors import GroundTruthSensor, LidarSensor, SimSensor
+from seatwin.sim.settings import BagOptions
 
 DEFAULT_VESSELS: tuple[str, ...] = (TARGETS_BY_COLUMN[1][0], TARGETS_BY_COLUMN[2][0], OWNSHIP_NAME)
 """The Gemini CSV's V1, V2, V3 order: Havfruen, Finn, milliAmpere (the ownship)."""
@@ -66,7 +66,7 @@ TIME_QUANTUM_S = 1e-3
 8 µs at 60 s and 0.25 ms at an hour, so a step sent as ``k * 0.1`` lands exactly on ``k * 0.1``."""
 
 
-class LockstepSettings(Settings):
+class LockstepSettings(BagOptions):
     """What ``seatwin serve`` simulates: the vessels posed by each step and the ownship's sensors."""
 
     vessels: tuple[str, ...] = Field(
@@ -238,6 +238,7 @@ class LockstepSimulation:
         self.writer = RecordingWriter(
             self.run_dir,
             s.fmt,
+            **s.writer_options(),
             sensors={x.name: x.parameters() for x in self.sensors},
             origin=self.scenario.origin,
             seed=s.seed,

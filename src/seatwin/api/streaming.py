@@ -274,7 +274,7 @@ class StreamRecorder:
         t = float(times[0])
         self._mount("radar", t)
         img = np.frombuffer(r.radarSpokes, np.uint8).reshape(ns, nr)
-        self.writer.write_image(SPOKES_TOPIC, "radar", t, img, "mono8")
+        self.writer.write_image(SPOKES_TOPIC, "radar", t, img, "mono8", image_format="raw")  # data, not a picture
         spokes = pack(
             SPOKE_LAYOUT,
             azimuth=azimuth,
@@ -374,8 +374,11 @@ def record_stream(
     fmt: str = "mcap",
     ownship: str | None = "milliAmpere",
     mounts: bool = True,
+    compression: str | None = None,
+    image_format: str = "raw",
 ) -> RecorderHandle:
-    """Start a ``SensorStreaming`` + ``Navigation`` server recording into the new run directory ``run_dir``.
+    """Start a ``SensorStreaming`` + ``Navigation`` server recording into the new run directory ``run_dir``
+    (``compression``, ``image_format``: the camera images', as :class:`~seatwin.recording.RecordingWriter`).
 
     ``mounts``: write the thesis rig's sensor mounts (:func:`thesis_mounts`) on /tf_static as each sensor first
     streams, so the bag can be tracked with the ``NavigationRequest``s as ownship ground truth."""
@@ -383,15 +386,17 @@ def record_stream(
 
     from seatwin.api.server import STREAM_MAX_MESSAGE_BYTES, bind, check_port, server_options
     from seatwin.recording import RecordingWriter
+    from seatwin.recording.config import check_compression, check_format, check_image_format
     from seatwin.recording.manifest import MANIFEST_NAME
     from seatwin.scenario.defaults import RAVNKLOA
 
     check_port(port)
+    options = {"compression": check_compression(check_format(fmt), compression), "image_format": check_image_format(image_format)}
     run_dir = Path(run_dir)
     if (run_dir / MANIFEST_NAME).exists():
         raise InputError(run_dir, "a recording exists here already; choose a new run directory")
     run_dir.mkdir(parents=True, exist_ok=True)
-    writer = RecordingWriter(run_dir, fmt, origin=RAVNKLOA, metadata={"recorded_by": "seatwin record-stream"})
+    writer = RecordingWriter(run_dir, fmt, origin=RAVNKLOA, metadata={"recorded_by": "seatwin record-stream"}, **options)
     recorder = StreamRecorder(writer, ownship, mounts=thesis_mounts(ownship, writer.topics) if mounts and ownship else {})
     server = grpc.server(futures.ThreadPoolExecutor(max_workers=8), options=server_options(STREAM_MAX_MESSAGE_BYTES))
     servicer = _Servicer(recorder)

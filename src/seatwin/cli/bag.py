@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from seatwin.cli.output import overwrite_option
+from seatwin.cli.output import compression_option, overwrite_option
 from seatwin.cli.simulate import DEFAULT_DISTRO, ROS_DISTRO_HELP, BagFormat, RosDistro
 
 
@@ -44,6 +44,7 @@ def register(app: typer.Typer) -> None:
             None, "--out", metavar="DIR", help="Where to write the repaired run (default: RUN.repaired beside it)."
         ),
         in_place: bool = typer.Option(False, "--in-place", help="Replace the original (once the repaired copy is complete)."),
+        compression: str | None = compression_option(),
         overwrite: bool = overwrite_option(),
     ) -> None:
         """Rewrite a killed run's bag (MCAP without summary, rosbag2 without metadata.yaml, ROS 1 without index)
@@ -51,7 +52,7 @@ def register(app: typer.Typer) -> None:
         bag's last flush are kept, bytes unchanged; the original is not touched unless --in-place."""
         from seatwin.recording.repair import repair_bag
 
-        result = repair_bag(path, out, in_place=in_place, overwrite=overwrite)
+        result = repair_bag(path, out, in_place=in_place, overwrite=overwrite, compression=compression)
         how = "was finished already; rewritten" if result.was_finished else "repaired"
         lost = "; the scan stopped at a damaged record (what follows it is lost)" if result.truncated else ""
         typer.echo(f"{result.format} bag {how}: {result.messages} messages on {len(result.topics)} topics in {result.bag}{lost}")
@@ -62,6 +63,7 @@ def register(app: typer.Typer) -> None:
         out: Path = typer.Option(..., "--out", help="New path: a run directory for a run, else the bag (a .bag file for ros1)."),
         fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Format of the new bag."),
         ros_distro: RosDistro = typer.Option(DEFAULT_DISTRO, "--ros-distro", help=ROS_DISTRO_HELP),
+        compression: str | None = compression_option(),
         overwrite: bool = overwrite_option(),
     ) -> None:
         """Write a bag in another format (MCAP, SQLite3, ROS 1) or for another ROS 2 distribution's metadata version.
@@ -71,7 +73,7 @@ def register(app: typer.Typer) -> None:
         """
         from seatwin.recording.convert import convert_bag
 
-        result = convert_bag(src, out, fmt=fmt.value, ros_distro=ros_distro.value, overwrite=overwrite)
+        result = convert_bag(src, out, fmt=fmt.value, ros_distro=ros_distro.value, overwrite=overwrite, compression=compression)
         distro = f" for ROS 2 {result.ros_distro}" if result.ros_distro else ""
         n = sum(result.counts.values())
         typer.echo(f"wrote {n} messages on {len(result.counts)} topics as {result.format}{distro}: {result.bag}")

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from seatwin.cli.output import overwrite_option
+from seatwin.cli.output import compression_option, image_format_option, overwrite_option
 from seatwin.cli.simulate import BagFormat, LidarMode
 from seatwin.defaults import DEFAULT_SENSORS
 
@@ -75,6 +75,8 @@ def register(app: typer.Typer) -> None:
         harbour: str | None = typer.Option(None, "--harbour", help=HARBOUR_HELP + " Default: the exported system's."),
         lidar_mode: LidarMode = typer.Option(LidarMode.raycast, "--lidar-mode", help="Lidar range model."),
         fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Bag format."),
+        compression: str | None = compression_option(),
+        image_format: str = image_format_option(),
         step: float = typer.Option(0.1, "--step", help="Fixed step [s] when given a scenario."),
         date: str | None = typer.Option(None, "--date", help="UTC date YYYY-MM-DD of a TimeOfDay CSV scenario."),
         overwrite: bool = overwrite_option(),
@@ -106,6 +108,8 @@ def register(app: typer.Typer) -> None:
             harbour=harbour,
             lidar_mode=lidar_mode.value,
             fmt=fmt.value,
+            compression=compression,
+            image_format=image_format,
         )
         typer.echo(
             f"completed: {result.simulated_s:.1f} s simulated in {result.wall_s:.1f} s; frames {result.frames}; "

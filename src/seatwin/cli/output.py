@@ -43,6 +43,34 @@ def overwrite_option() -> Any:
     )
 
 
+COMPRESSION_HELP = (
+    "Chunk compression of the bag: mcap zstd (default; level 1), lz4 or none; ros1 lz4 (default), bz2 or none; "
+    "sqlite3 none. Every reader (seatwin, rosbags, mcap, ROS tools) reads them."
+)
+
+
+def compression_option() -> Any:
+    """``--compression zstd|lz4|bz2|none`` of every verb that writes a bag (default: the format's own)."""
+    import typer
+
+    return typer.Option(None, "--compression", metavar="zstd|lz4|bz2|none", help=COMPRESSION_HELP)
+
+
+def image_format_option() -> Any:
+    """``--image-format raw|jpeg|png`` of every verb that records camera images."""
+    import typer
+
+    from seatwin.defaults import DEFAULT_IMAGE_FORMAT, JPEG_QUALITY
+
+    return typer.Option(
+        DEFAULT_IMAGE_FORMAT,
+        "--image-format",
+        metavar="raw|jpeg|png",
+        help="Camera images as sensor_msgs/Image bgr8 (raw, as the thesis records them) or sensor_msgs/CompressedImage "
+        f"(jpeg, quality {JPEG_QUALITY}, or png) on <image topic>/compressed, as image_transport names it.",
+    )
+
+
 @contextlib.contextmanager
 def progress_counter(
     what: str, enabled: bool = True, min_total: int = 200, every_s: float = 10.0

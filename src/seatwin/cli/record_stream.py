@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from seatwin.cli.output import overwrite_option
+from seatwin.cli.output import compression_option, image_format_option, overwrite_option
 from seatwin.cli.simulate import BagFormat
 
 
@@ -24,6 +24,8 @@ def register(app: typer.Typer) -> None:
             help="Write the thesis rig's sensor mounts (lidar, radar, cameras) on /tf_static as each sensor first "
             "streams (the stream carries none), so the bag can be tracked.",
         ),
+        compression: str | None = compression_option(),
+        image_format: str = image_format_option(),
         overwrite: bool = overwrite_option(),
     ) -> None:
         """Serve sensorstreaming.SensorStreaming and navigation.Navigation; record every message into a ROS bag.
@@ -41,7 +43,16 @@ def register(app: typer.Typer) -> None:
 
         remove_outputs(check_new_run(out, "out", overwrite=overwrite))
         with interrupts_set_event() as stop:  # before the address is announced: a signal right after it finishes the bag
-            handle = record_stream(out, port=port, host=host, fmt=fmt.value, ownship=ownship, mounts=mounts)
+            handle = record_stream(
+                out,
+                port=port,
+                host=host,
+                fmt=fmt.value,
+                ownship=ownship,
+                mounts=mounts,
+                compression=compression,
+                image_format=image_format,
+            )
             typer.echo(f"serving SensorStreaming + Navigation on {handle.address}; recording into {out} (Ctrl-C to finish)")
             try:
                 wait(stop)

@@ -9,7 +9,7 @@ from typing import Any
 
 import typer
 
-from seatwin.cli.output import overwrite_option
+from seatwin.cli.output import compression_option, image_format_option, overwrite_option
 from seatwin.cli.simulate import BagFormat, LidarMode
 from seatwin.defaults import DEFAULT_SENSORS
 
@@ -34,6 +34,8 @@ def register(app: typer.Typer) -> None:
         lidar_mode: LidarMode = typer.Option(LidarMode.raycast, "--lidar-mode", help="Lidar range model."),
         lidar_preset: str = typer.Option("vlp16", "--lidar-preset", help="vlp16 (1800 columns) or vlp16-thesis (1024)."),
         fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Bag format."),
+        compression: str | None = compression_option(),
+        image_format: str = image_format_option(),
         harbour: str = typer.Option(
             "default",
             "--harbour",
@@ -98,6 +100,8 @@ def register(app: typer.Typer) -> None:
                 lidar_mode=lidar_mode.value,
                 lidar_preset=lidar_preset,
                 fmt=fmt.value,
+                compression=compression,
+                image_format=image_format,
                 harbour=harbour,
                 radar_spokes=True,  # a rotation's spokes: streamed, and served by Sensordata
                 on_frame=streamer.on_frame if streamer is not None else None,

@@ -8,7 +8,7 @@ from typing import Any
 
 import typer
 
-from seatwin.cli.output import overwrite_option
+from seatwin.cli.output import compression_option, image_format_option, overwrite_option
 from seatwin.defaults import DEFAULT_ROS_DISTRO, DEFAULT_SENSORS, ROS_DISTROS
 
 
@@ -62,6 +62,8 @@ def register(app: typer.Typer) -> None:
         dissipation: bool = typer.Option(False, "--dissipation", help="Range-dependent return probability."),
         fmt: BagFormat = typer.Option(BagFormat.mcap, "--format", help="Bag format."),
         ros_distro: RosDistro = typer.Option(DEFAULT_DISTRO, "--ros-distro", help=ROS_DISTRO_HELP),
+        compression: str | None = compression_option(),
+        image_format: str = image_format_option(),
         date: str | None = typer.Option(None, "--date", help="UTC date YYYY-MM-DD of a TimeOfDay CSV."),
         sensors: str = typer.Option(
             ",".join(DEFAULT_SENSORS),
@@ -145,6 +147,8 @@ def register(app: typer.Typer) -> None:
                 dissipation=dissipation,
                 fmt=fmt.value,
                 ros_distro=ros_distro.value,
+                compression=compression,
+                image_format=image_format,
                 radar_config=radar,
                 radar_spokes=streamer is not None,
                 camera_hfov_deg=camera_hfov,

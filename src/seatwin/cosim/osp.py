@@ -23,7 +23,7 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-from seatwin.defaults import DEFAULT_SENSORS
+from seatwin.defaults import DEFAULT_IMAGE_FORMAT, DEFAULT_SENSORS
 from seatwin.errors import InputError, ParameterError
 from seatwin.scenario import Scenario
 from seatwin.settings import validated
@@ -165,6 +165,8 @@ def run_system(
     harbour: str | None = None,
     lidar_mode: str = "raycast",
     fmt: str = "mcap",
+    compression: str | None = None,
+    image_format: str = DEFAULT_IMAGE_FORMAT,
 ) -> Any:
     """Run an exported system (:func:`export_system`) with libcosim against an in-process ``seatwin serve``
     recording into ``out``; return the server's :class:`~seatwin.sim.loop.SimulationResult`.
@@ -206,6 +208,8 @@ def run_system(
         harbour=str(meta.get("harbour", "default") if harbour is None else harbour),
         lidar_mode=lidar_mode,
         fmt=fmt,
+        compression=compression,
+        image_format=image_format,
     )
     ok = False
     try:

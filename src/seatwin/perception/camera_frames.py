@@ -24,7 +24,6 @@ from seatwin.sensors.camera.onnx_detector import OnnxDetectorConfig, check_model
 CameraDetector = LabelDetectorConfig | OnnxDetectorConfig
 DETECTORS = ("label", "onnx")
 LABELS_TYPE = "vision_msgs/msg/Detection2DArray"
-IMAGE_TYPES = ("sensor_msgs/msg/Image", "sensor_msgs/msg/CompressedImage")
 
 
 @dataclass(frozen=True)
@@ -71,16 +70,16 @@ def default_detector(rec: Any) -> LabelDetectorConfig:
 
 def camera_prefix(topic: str) -> str:
     """``/camera/front/image_raw[/compressed]`` or ``/camera/front/labels`` → ``/camera/front``."""
-    return topic.removesuffix("/compressed").rsplit("/", 1)[0]
+    from seatwin.recording.reader import camera_of_topic
+
+    return camera_of_topic(topic)
 
 
 def camera_topics(rec: Any, detector: CameraDetector) -> list[str]:
     """The topics ``detector`` reads: labels (``label``) or images (``onnx``: raw, else compressed, one topic per
     camera); empty when the recording has none."""
     if isinstance(detector, OnnxDetectorConfig):
-        raw = list(rec.topics_of_type(IMAGE_TYPES[0]))
-        cameras = {camera_prefix(t) for t in raw}
-        return sorted(raw + [t for t in rec.topics_of_type(IMAGE_TYPES[1]) if camera_prefix(t) not in cameras])
+        return list(rec.camera_image_topics())
     return list(rec.topics_of_type(LABELS_TYPE))
 
 
@@ -168,15 +167,12 @@ def _labels(arr: Any, visibility: Visibility | None = None) -> list[tuple[str, f
     return [(b.instance, b.cx, b.cy, b.w, b.h, b.visible) for b in label_boxes(arr, visibility)]
 
 
-def _bgr(msg: Any, topic: str) -> NDArray[np.uint8]:
-    """The pixels of an Image or CompressedImage as bgr8."""
-    from seatwin.recording.images import decode_compressed, image_to_array, to_rgb
+def _bgr(rec: Any, m: Any) -> NDArray[np.uint8]:
+    """The pixels of an Image or CompressedImage message as bgr8 (a bad one: an error naming bag, topic and time)."""
+    from seatwin.recording.images import to_bgr
 
-    if hasattr(msg, "format"):
-        pixels, encoding = decode_compressed(msg, topic)
-    else:
-        pixels, encoding = image_to_array(msg, topic), str(msg.encoding)
-    return np.ascontiguousarray(to_rgb(pixels, encoding)[..., ::-1])
+    frame = rec.decode_image(m)
+    return to_bgr(frame.pixels, frame.encoding)
 
 
 def detected_frames(rec: Any, topics: list[str], detector: CameraDetector) -> Iterator[CameraFrame]:
@@ -196,7 +192,7 @@ def detected_frames(rec: Any, topics: list[str], detector: CameraDetector) -> It
     for m in rec.messages(topics):
         k, dist = models[m.topic]
         if onnx is not None:
-            dets = onnx.detect(_bgr(m.msg, m.topic))
+            dets = onnx.detect(_bgr(rec, m))
         else:
             w, h = int(round(2 * (k[0, 2] + 0.5))), int(round(2 * (k[1, 2] + 0.5)))
             stamp = int(m.msg.header.stamp.sec) * 1_000_000_000 + int(m.msg.header.stamp.nanosec)

@@ -38,6 +38,8 @@ def _save_png(path: Path, bgr: NDArray[np.uint8]) -> None:
 
 
 def _labels_topic(image_topic: str) -> str:
+    """``/camera/front/image_raw[/compressed]`` → ``/camera/front/labels`` (another image topic: ``<topic>/labels``)."""
+    image_topic = image_topic.removesuffix("/compressed")
     return image_topic.rsplit("/", 1)[0] + "/labels" if image_topic.endswith("/image_raw") else image_topic + "/labels"
 
 
@@ -55,13 +57,13 @@ def export_coco(run: str | Path, out: str | Path, min_visible_fraction: float = 
     from seatwin.outputs import check_output_folder, write_text_atomic
     from seatwin.perception.camera_frames import label_boxes, label_visibility
     from seatwin.recording import open_bag
-    from seatwin.recording.images import image_to_array
+    from seatwin.recording.images import to_bgr
 
     out = Path(out)
     if check_output_folder(out, "out", ["images", "annotations.json"], inputs=[run], overwrite=overwrite):
         _remove_earlier_export(out)
     with open_bag(run) as rec:
-        image_topics = [t for t, i in sorted(rec.topics.items()) if i.msgtype == "sensor_msgs/msg/Image"]
+        image_topics = rec.camera_image_topics()  # raw images, else compressed ones (--image-format jpeg|png)
         if not image_topics:
             raise InputError(run, "the recording has no camera images (simulate with --sensors ...,camera)")
         label_topics = [_labels_topic(t) for t in image_topics if _labels_topic(t) in rec.topics]
@@ -74,19 +76,18 @@ def export_coco(run: str | Path, out: str | Path, min_visible_fraction: float = 
         images, annotations = [], []
         for m in rec.messages(image_topics):
             stamp = _stamp(m.msg)
-            camera = m.topic.strip("/").replace("/image_raw", "").replace("/", "_")
+            camera = m.topic.removesuffix("/compressed").strip("/").replace("/image_raw", "").replace("/", "_")
             name = f"{camera}_{stamp}.png"
-            pixels = image_to_array(m.msg, m.topic)
-            if m.msg.encoding == "rgb8":
-                pixels = pixels[..., ::-1]
+            frame = rec.decode_image(m)
+            pixels = to_bgr(frame.pixels, frame.encoding)
             _save_png(out / "images" / name, pixels)
             image_id = len(images) + 1
             images.append(
                 {
                     "id": image_id,
                     "file_name": f"images/{name}",
-                    "width": int(m.msg.width),
-                    "height": int(m.msg.height),
+                    "width": int(pixels.shape[1]),
+                    "height": int(pixels.shape[0]),
                     "camera": camera,
                     "frame_id": m.msg.header.frame_id,
                     "stamp_ns": stamp,

@@ -10,7 +10,7 @@ import re
 from dataclasses import asdict, dataclass, fields
 from typing import Any, Literal
 
-from seatwin.defaults import ROS_DISTROS, RosDistro
+from seatwin.defaults import COMPRESSIONS, DEFAULT_COMPRESSION, IMAGE_FORMATS, ROS_DISTROS, ImageFormat, RosDistro
 from seatwin.errors import InputError, ParameterError
 
 BagFormat = Literal["mcap", "sqlite3", "ros1"]
@@ -117,3 +117,21 @@ def check_format(fmt: str, param: str = "fmt") -> BagFormat:
     if fmt not in FORMATS:
         raise ParameterError(param, f"unknown bag format {fmt!r}; expected one of {', '.join(FORMATS)}")
     return fmt  # type: ignore[return-value]
+
+
+def check_compression(fmt: str, compression: str | None, param: str = "compression") -> str:
+    """The compression of a ``fmt`` bag: ``compression`` if that format has it (a :class:`ParameterError` naming
+    ``param`` otherwise), None → the format's default (:data:`~seatwin.defaults.DEFAULT_COMPRESSION`)."""
+    if compression is None:
+        return DEFAULT_COMPRESSION[fmt]
+    names = COMPRESSIONS[fmt]
+    if compression not in names:
+        raise ParameterError(param, f"{compression!r} is not a compression of {fmt} bags; expected one of {', '.join(names)}")
+    return compression
+
+
+def check_image_format(name: str, param: str = "image_format") -> ImageFormat:
+    """Validate a camera image format (raw, jpeg, png; a :class:`ParameterError` naming ``param`` otherwise)."""
+    if name not in IMAGE_FORMATS:
+        raise ParameterError(param, f"unknown image format {name!r}; expected one of {', '.join(IMAGE_FORMATS)}")
+    return name  # type: ignore[return-value]

@@ -25,7 +25,7 @@ from typing import Any
 
 from seatwin.defaults import DEFAULT_ROS_DISTRO
 from seatwin.errors import InputError
-from seatwin.recording.config import TopicConfig, check_format, check_ros_distro
+from seatwin.recording.config import TopicConfig, check_compression, check_format, check_ros_distro
 from seatwin.recording.manifest import MANIFEST_NAME, check_bag_output, write_manifest
 from seatwin.recording.storage import bag_path, open_storage
 
@@ -70,13 +70,16 @@ def convert_bag(
     fmt: str = "mcap",
     ros_distro: str = DEFAULT_ROS_DISTRO,
     overwrite: bool = False,
+    compression: str | None = None,
 ) -> ConvertResult:
     """Write the bag (or run directory) ``src`` as a new ``fmt`` bag for ``ros_distro`` at ``out`` (an existing
-    ``out`` only with ``overwrite``, and never an input)."""
+    ``out`` only with ``overwrite``, and never an input), its chunks compressed with ``compression`` (None: the
+    format's default, :data:`~seatwin.defaults.DEFAULT_COMPRESSION`)."""
     from seatwin.recording.reader import open_bag
 
     fmt = check_format(fmt, "fmt")
     ros_distro = check_ros_distro(ros_distro)
+    compression = check_compression(fmt, compression)
     out = Path(out)
     check_bag_output(out, src, overwrite)
     with open_bag(src) as rec:
@@ -92,7 +95,7 @@ def convert_bag(
         latched = {TopicConfig().tf_static, rec.topic_config.tf_static}
         bag.parent.mkdir(parents=True, exist_ok=True)
         made = out if run_dir is not None else bag
-        storage = open_storage(fmt, bag, store, ros_distro=ros_distro)
+        storage = open_storage(fmt, bag, store, ros_distro=ros_distro, compression=compression)
         conns: dict[str, Any] = {}
         counts: dict[str, int] = {}
         pending = 0
@@ -121,7 +124,7 @@ def convert_bag(
             raise
         storage.close()
         if run_dir is not None:
-            _copy_run(run_dir, rec.bag, rec.manifest or {}, out, bag, fmt, ros_distro)
+            _copy_run(run_dir, rec.bag, {**(rec.manifest or {}), "compression": compression}, out, bag, fmt, ros_distro)
     return ConvertResult(out if run_dir is not None else bag, bag, fmt, None if fmt == "ros1" else ros_distro, counts)
 
 

@@ -59,11 +59,21 @@ def bag_info(path: str | os.PathLike[str], scan: bool = True, ignore_crc: bool =
             "recovered": rec.recovered,
             "truncated": rec.truncated,
             "bad_crc": rec.bad_crc,
+            "size_bytes": _size(Path(rec.bag)),
+            "compression": m.get("compression"),
+            "image_format": m.get("image_format"),
             "seatwin_version": m.get("seatwin_version"),
             "seed": m.get("seed"),
             "error": m.get("error"),
             "topics": topics,
         }
+
+
+def _size(bag: Path) -> int:
+    """Bytes of the bag on disk: its file, or every file of a rosbag2 folder."""
+    if bag.is_dir():
+        return sum(p.stat().st_size for p in bag.rglob("*") if p.is_file())
+    return bag.stat().st_size
 
 
 def format_info(d: dict[str, Any]) -> str:
@@ -80,6 +90,10 @@ def format_info(d: dict[str, Any]) -> str:
         f"messages:  {d['message_count']}",
         f"complete:  {state}",
     ]
+    if d.get("size_bytes") is not None:
+        how = [f"{d['compression']} chunks"] if d.get("compression") else []
+        how += [f"{d['image_format']} images"] if d.get("image_format") else []
+        lines.append(f"size:      {d['size_bytes'] / 1e6:.1f} MB" + (f"  ({', '.join(how)})" if how else ""))
     if d.get("seatwin_version"):
         lines.append(f"seatwin:   {d['seatwin_version']}  seed {d['seed']}")
     if d.get("error"):

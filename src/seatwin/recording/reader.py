@@ -75,6 +75,11 @@ class PointCloud:
         return p[np.isfinite(p).all(axis=1)]
 
 
+def camera_of_topic(topic: str) -> str:
+    """``/camera/front/image_raw[/compressed]`` or ``/camera/front/labels`` → ``/camera/front``."""
+    return topic.removesuffix("/compressed").rsplit("/", 1)[0]
+
+
 @dataclass
 class ImageFrame:
     """One image: ``pixels`` H×W×C uint8 in ``encoding`` order (bgr8, rgb8 or mono8)."""
@@ -390,13 +395,29 @@ class Recording:
         if not names:
             return
         for m in self.messages(names):
-            with self._standard_fields(m):
+            yield self.decode_image(m)
+
+    def decode_image(self, m: Message) -> ImageFrame:
+        """The pixels of an Image or CompressedImage message ``m`` (from :meth:`messages`); a bad one is one
+        :class:`InputError` naming the bag, the topic and the message's log time."""
+        with self._standard_fields(m):
+            try:
                 if m.msgtype == IMAGE:
-                    px, enc, cf = image_to_array(m.msg, f"{self.bag} {m.topic}"), str(m.msg.encoding), None
+                    px, enc, cf = image_to_array(m.msg), str(m.msg.encoding), None
+                elif m.msgtype == COMPRESSED_IMAGE:
+                    (px, enc), cf = decode_compressed(m.msg), str(m.msg.format)
                 else:
-                    (px, enc), cf = decode_compressed(m.msg, f"{self.bag} {m.topic}"), str(m.msg.format)
-                frame = ImageFrame(m.topic, stamp_s(m.msg.header.stamp), m.msg.header.frame_id, px, enc, cf, m.log_time_ns)
-            yield frame
+                    raise InputError(None, f"a {m.msgtype} message is not an image")
+            except InputError as exc:
+                raise InputError(self.bag, f"{exc.detail} (message at {m.log_time_ns} ns)", where=m.topic) from None
+            return ImageFrame(m.topic, stamp_s(m.msg.header.stamp), m.msg.header.frame_id, px, enc, cf, m.log_time_ns)
+
+    def camera_image_topics(self) -> list[str]:
+        """One image topic per camera: its ``sensor_msgs/Image`` topic, else its ``CompressedImage`` one
+        (``/camera/front/image_raw`` and ``…/image_raw/compressed`` are the same camera)."""
+        raw = self.topics_of_type(IMAGE)
+        cameras = {camera_of_topic(t) for t in raw}
+        return sorted(raw + [t for t in self.topics_of_type(COMPRESSED_IMAGE) if camera_of_topic(t) not in cameras])
 
     def static_transforms(self) -> list[StaticTransform]:
         """All transforms on /tf_static (the sensor mounts and the display frame)."""

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from seatwin.errors import InputError
-from seatwin.recording.config import TopicConfig
+from seatwin.recording.config import TopicConfig, check_compression
 from seatwin.recording.manifest import MANIFEST_NAME, check_bag_output, read_manifest, write_manifest
 from seatwin.recording.reader import Recording
 from seatwin.recording.reader import _find_bag as find_bag  # where a path keeps its bag, without opening it
@@ -56,7 +56,11 @@ def default_out(source: Path) -> Path:
 
 
 def repair_bag(
-    source: str | os.PathLike[str], out: str | os.PathLike[str] | None = None, in_place: bool = False, overwrite: bool = False
+    source: str | os.PathLike[str],
+    out: str | os.PathLike[str] | None = None,
+    in_place: bool = False,
+    overwrite: bool = False,
+    compression: str | None = None,
 ) -> RepairResult:
     """Rewrite the bag of ``source`` (a run directory, a rosbag2 folder, or a .mcap, .db3 or .bag file) as a finished bag.
 
@@ -66,6 +70,7 @@ def repair_bag(
     repaired into the bag ``out`` (a rosbag2 folder, or a ``.bag`` file for ROS 1). ``in_place``
     replaces the original instead (``out`` must then be None). An ``out`` that exists is refused unless
     ``overwrite`` (and then only an earlier repair's or run's output is replaced, never an input).
+    ``compression``: the new bag's chunks (None: the run manifest's ``compression``, else the format's default).
     """
     source = Path(source)
     if in_place and out is not None:
@@ -80,15 +85,18 @@ def repair_bag(
             target = Path(out) if out is not None else default_out(run_dir if run_dir is not None else source)
             check_bag_output(target, source, overwrite)
         new_bag = bag_path(target, rec.format) if run_dir is not None else target
+        if compression is None:
+            compression = (rec.manifest or {}).get("compression")
+        compression = check_compression(rec.format, compression)
         result = RepairResult(source, target, new_bag, rec.format, 0, was_finished=not rec.recovered, truncated=rec.truncated)
         try:
             if run_dir is not None:
                 target.mkdir(parents=True)
-            _rewrite(rec, new_bag, result)
+            _rewrite(rec, new_bag, result, compression)
             result.truncated = rec.truncated
             if run_dir is not None:
                 _copy_run_files(run_dir, rec.bag, target)
-                _write_repaired_manifest(run_dir, target, result)
+                _write_repaired_manifest(run_dir, target, result, compression)
         except BaseException:
             shutil.rmtree(target, ignore_errors=True) if target.is_dir() else target.unlink(missing_ok=True)
             raise
@@ -133,9 +141,9 @@ class _reading_copy:
             self.rec.close()
 
 
-def _rewrite(rec: Recording, new_bag: Path, result: RepairResult) -> None:
+def _rewrite(rec: Recording, new_bag: Path, result: RepairResult, compression: str) -> None:
     """Every message of ``rec`` (bytes unchanged, file order) into a new finished bag at ``new_bag``."""
-    storage = open_storage(rec.format, new_bag, rec.store)
+    storage = open_storage(rec.format, new_bag, rec.store, compression=compression)
     latched = rec.topic_config.tf_static
     conns: dict[str, object] = {}
     counts: dict[str, int] = {}
@@ -166,8 +174,9 @@ def _copy_run_files(run_dir: Path, bag: Path, target: Path) -> None:
             shutil.copytree(f, target / f.name)
 
 
-def _write_repaired_manifest(run_dir: Path, target: Path, result: RepairResult) -> None:
+def _write_repaired_manifest(run_dir: Path, target: Path, result: RepairResult, compression: str) -> None:
     manifest = read_manifest(run_dir) or {}
+    manifest["compression"] = compression
     manifest["topics"] = {
         t: {"type": (manifest.get("topics", {}).get(t) or {}).get("type"), "count": n} for t, n in sorted(result.topics.items())
     }

@@ -33,11 +33,11 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from seatwin import __version__
-from seatwin.defaults import DEFAULT_ROS_DISTRO
+from seatwin.defaults import DEFAULT_IMAGE_FORMAT, DEFAULT_ROS_DISTRO, JPEG_QUALITY
 from seatwin.errors import InputError
 from seatwin.geo import GeodeticOrigin
 from seatwin.recording import messages as M
-from seatwin.recording.config import TopicConfig, check_format, check_ros_distro
+from seatwin.recording.config import TopicConfig, check_compression, check_format, check_image_format, check_ros_distro
 from seatwin.recording.fast_cdr import (
     NAV_SAT_FIX,
     ODOMETRY,
@@ -88,7 +88,10 @@ class RecordingWriter:
 
     ``scenario_file`` is copied into ``run_dir`` (a file already there is just named in the
     manifest); ``sensors`` and ``metadata`` go into the manifest as given (JSON-serialisable).
-    ``ros_distro`` picks a rosbag2 bag's metadata version (:data:`~seatwin.defaults.ROS_DISTROS`);
+    ``ros_distro`` picks a rosbag2 bag's metadata version (:data:`~seatwin.defaults.ROS_DISTROS`).
+    ``compression``: the bag's chunk compression (:data:`~seatwin.defaults.COMPRESSIONS`; None: the format's
+    default, zstd for MCAP). ``image_format``: :meth:`write_image` writes ``sensor_msgs/Image`` (``raw``) or a
+    JPEG/PNG ``sensor_msgs/CompressedImage`` on ``<topic>/compressed`` (``jpeg``, ``png``).
     ``on_write`` sees every message written (:attr:`on_write`).
     """
 
@@ -110,12 +113,16 @@ class RecordingWriter:
         fsync: bool = False,
         ros_distro: str = DEFAULT_ROS_DISTRO,
         on_write: Callable[[str, str, int, bytes | memoryview], None] | None = None,
+        compression: str | None = None,
+        image_format: str = DEFAULT_IMAGE_FORMAT,
     ) -> None:
         self.format = check_format(fmt)
         self.on_write = on_write
         """Called with (topic, type, log time ns, serialised bytes) of every message once it is in the bag (a live
         view: :class:`~seatwin.recording.live.LiveServer`)."""
         ros_distro = check_ros_distro(ros_distro)
+        compression = check_compression(self.format, compression)
+        self.image_format = check_image_format(image_format)
         self.run_dir = Path(run_dir)
         self.topics = topics or TopicConfig()
         self.origin = origin
@@ -183,7 +190,10 @@ class RecordingWriter:
         }
         if self.format != "ros1":
             self._manifest["ros_distro"] = ros_distro
-        self.storage: BagStorage = open_storage(self.format, self.bag, self.store, fsync=fsync, ros_distro=ros_distro)
+        self._manifest.update(compression=compression, image_format=self.image_format)
+        self.storage: BagStorage = open_storage(
+            self.format, self.bag, self.store, fsync=fsync, ros_distro=ros_distro, compression=compression
+        )
         """The bag file(s): one :class:`~seatwin.recording.storage.BagStorage` class per format."""
         self._write_manifest()
 
@@ -368,9 +378,17 @@ class RecordingWriter:
         self._write_cloud(topic, t, lambda: self._clouds.encode(t, frame_id, RADAR_LAYOUT, columns))
 
     @_timed
-    def write_image(self, topic: str, frame_id: str, t: float, pixels: np.ndarray, encoding: str = "bgr8") -> None:
-        """A ``sensor_msgs/Image`` (thesis: bgr8, 612×512)."""
-        self.write(topic, t, M.image(self.store, t, frame_id, pixels, encoding))
+    def write_image(
+        self, topic: str, frame_id: str, t: float, pixels: np.ndarray, encoding: str = "bgr8", image_format: str | None = None
+    ) -> None:
+        """A camera image in ``image_format`` (default: the writer's :attr:`image_format`): a ``sensor_msgs/Image``
+        on ``topic`` (raw; thesis: bgr8, 612×512), or a JPEG/PNG ``sensor_msgs/CompressedImage`` on
+        ``topic + "/compressed"`` (image_transport's convention: ``/camera/front/image_raw/compressed``)."""
+        kind = self.image_format if image_format is None else check_image_format(image_format)
+        if kind == "raw":
+            self.write(topic, t, M.image(self.store, t, frame_id, pixels, encoding))
+        else:
+            self.write_compressed_image(f"{topic}/compressed", frame_id, t, pixels, kind, encoding)
 
     @_timed
     def write_camera_info(
@@ -407,12 +425,14 @@ class RecordingWriter:
         pixels: np.ndarray,
         fmt: str = "jpeg",
         encoding: str = "bgr8",
-        quality: int = 90,
+        quality: int = JPEG_QUALITY,
     ) -> None:
-        """A ``sensor_msgs/CompressedImage`` (JPEG or PNG via Pillow) from an H×W×3 ``encoding`` array."""
-        from seatwin.recording.images import encode_image
+        """A ``sensor_msgs/CompressedImage`` (JPEG or PNG via Pillow) from an H×W(×C) ``encoding`` array; its
+        ``format`` as compressed_image_transport writes it (``bgr8; jpeg compressed bgr8``)."""
+        from seatwin.recording.images import encode_image, transport_format
 
-        self.write(topic, t, M.compressed_image(self.store, t, frame_id, encode_image(pixels, fmt, encoding, quality), fmt))
+        payload = encode_image(pixels, fmt, encoding, quality)
+        self.write(topic, t, M.compressed_image(self.store, t, frame_id, payload, transport_format(fmt, encoding)))
 
     @_timed
     def write_static_transforms(self, t: float, transforms: Sequence[M.StaticTransform] = ()) -> None:

@@ -160,6 +160,7 @@ def simulate_scenario(
         writer_kwargs={
             "on_write": on_write,
             "ros_distro": settings.ros_distro,
+            **settings.writer_options(),
             "origin": scenario.origin,
             "seed": scenario.seed,
             "scenario_file": yaml_path,

@@ -8,9 +8,9 @@ from __future__ import annotations
 import math
 from typing import Literal
 
-from pydantic import Field, field_validator
+from pydantic import Field, field_validator, model_validator
 
-from seatwin.defaults import DEFAULT_ROS_DISTRO, DEFAULT_SENSORS
+from seatwin.defaults import DEFAULT_IMAGE_FORMAT, DEFAULT_ROS_DISTRO, DEFAULT_SENSORS, Compression, ImageFormat
 from seatwin.layout.harbours import check_harbour_spec
 from seatwin.settings import Settings
 
@@ -19,7 +19,33 @@ LIDAR_MODES = ("raycast", "depthbuffer", "depthbuffer-legacy", "depthbuffer-plan
 BAG_FORMATS = ("mcap", "sqlite3", "ros1")
 
 
-class SimulationSettings(Settings):
+class BagOptions(Settings):
+    """How a run's bag is written beyond its format (``fmt``, a field of the subclass): chunk compression and image format."""
+
+    compression: Compression | None = Field(
+        None,
+        description="Chunk compression of the bag: mcap zstd (default), lz4 or none; ros1 lz4 (default), bz2 or "
+        "none; sqlite3 none. None: the format's default.",
+    )
+    image_format: ImageFormat = Field(
+        DEFAULT_IMAGE_FORMAT,
+        description="Camera images as sensor_msgs/Image bgr8 (raw, as the thesis) or sensor_msgs/CompressedImage "
+        "(jpeg quality 90, png) on <image topic>/compressed.",
+    )
+
+    @model_validator(mode="after")
+    def _compression_of_format(self) -> BagOptions:
+        from seatwin.recording.config import check_compression
+
+        check_compression(getattr(self, "fmt", "mcap"), self.compression)
+        return self
+
+    def writer_options(self) -> dict[str, str | None]:
+        """The :class:`~seatwin.recording.RecordingWriter` keywords these settings choose."""
+        return {"compression": self.compression, "image_format": self.image_format}
+
+
+class SimulationSettings(BagOptions):
     """Every choice of ``simulate`` besides the scenario and the time window."""
 
     sensors: tuple[Literal["lidar", "radar", "camera"], ...] = Field(

@@ -31,10 +31,17 @@ def bag_path(run_dir: Path, fmt: str) -> Path:
 
 
 def open_storage(
-    fmt: str, path: Path, store: Typestore, *, fsync: bool = False, ros_distro: str = DEFAULT_ROS_DISTRO
+    fmt: str,
+    path: Path,
+    store: Typestore,
+    *,
+    fsync: bool = False,
+    ros_distro: str = DEFAULT_ROS_DISTRO,
+    compression: str | None = None,
 ) -> BagStorage:
-    """A new, opened bag of format ``fmt`` at ``path`` (a rosbag2 bag in ``ros_distro``'s metadata version)."""
-    storage = STORAGES[check_format(fmt)](path, store, fsync=fsync, ros_distro=ros_distro)
+    """A new, opened bag of format ``fmt`` at ``path`` (a rosbag2 bag in ``ros_distro``'s metadata version), its
+    chunks compressed with ``compression`` (None: the format's :data:`~seatwin.defaults.DEFAULT_COMPRESSION`)."""
+    storage = STORAGES[check_format(fmt)](path, store, fsync=fsync, ros_distro=ros_distro, compression=compression)
     storage.open()
     return storage
 

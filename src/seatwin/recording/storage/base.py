@@ -11,7 +11,7 @@ from rosbags.interfaces import Connection
 from rosbags.typesys.store import Typestore
 
 from seatwin.defaults import DEFAULT_ROS_DISTRO
-from seatwin.recording.config import check_ros_distro
+from seatwin.recording.config import check_compression, check_ros_distro
 
 
 class BagStorage(ABC):
@@ -22,6 +22,7 @@ class BagStorage(ABC):
     serialised in the format's encoding (:attr:`ros1`: ROS 1, else CDR). :meth:`flush` hands
     everything written so far to the operating system, so a process killed after it leaves a bag
     readable up to there; ``fsync`` makes it reach the disk as well (power loss; slower).
+    ``compression`` is one of the format's :data:`~seatwin.defaults.COMPRESSIONS` (None: its default).
     """
 
     format: ClassVar[str]
@@ -29,8 +30,18 @@ class BagStorage(ABC):
     ros1: ClassVar[bool] = False
     """Messages are ROS 1 serialised (else CDR)."""
 
-    def __init__(self, path: Path, store: Typestore, *, fsync: bool = False, ros_distro: str = DEFAULT_ROS_DISTRO) -> None:
+    def __init__(
+        self,
+        path: Path,
+        store: Typestore,
+        *,
+        fsync: bool = False,
+        ros_distro: str = DEFAULT_ROS_DISTRO,
+        compression: str | None = None,
+    ) -> None:
         self.path = Path(path)
+        self.compression = check_compression(self.format, compression)
+        """How the bag's chunks are compressed: ``zstd``, ``lz4``, ``bz2`` or ``none``."""
         self.store = store
         self.fsync = fsync
         self.ros_distro = check_ros_distro(ros_distro)

@@ -13,6 +13,12 @@ Every closed chunk is flushed to the operating system at once; a flush closes th
 CRCs (rosbags writes 0, "not written"): every chunk carries the CRC-32 of its records, and the
 Data End record the CRC-32 of every byte before it (:class:`_CrcFile` keeps it while writing), so
 a reader can tell a damaged bag (``seatwin.recording.mcap_check``).
+
+Chunk compression (``chunk_compression``: ``zstd``, the default of seatwin's bags, ``lz4`` or ``none``):
+each chunk's records are compressed as one frame (:class:`~seatwin.recording.storage.compression.ChunkCompressor`)
+— a large message's chunk from its head and data without joining them; the CRC is that of the
+uncompressed records, as the MCAP specification defines it. rosbag2's metadata says nothing of it
+(``compression_mode`` is for rosbag2's own file/message compression): MCAP readers see it per chunk.
 """
 
 from __future__ import annotations
@@ -31,6 +37,7 @@ from rosbags.interfaces import Connection
 from rosbags.rosbag2.enums import CompressionMode
 from rosbags.rosbag2.storage_mcap import McapWriter, PendingChunk
 
+from seatwin.recording.storage.compression import ChunkCompressor
 from seatwin.recording.storage.rosbag2 import Rosbag2Storage
 
 CHUNK_BYTES = 1 << 20
@@ -90,8 +97,11 @@ class LeanMcapWriter(McapWriter):
 
     DIRECT_BYTES: int | None = 64 * 1024
 
-    def __init__(self, path: Path, compression: CompressionMode) -> None:
+    def __init__(self, path: Path, compression: CompressionMode, chunk_compression: str = "none") -> None:
         super().__init__(path, compression)
+        self._compressor = None if chunk_compression == "none" else ChunkCompressor(chunk_compression)
+        self.compression = "" if self._compressor is None else chunk_compression
+        """The chunks' ``compression`` field (rosbags' attribute): ``""`` (none), ``zstd`` or ``lz4``."""
         self.bio.flush()
         self.bio = _CrcFile(self.bio, zlib.crc32(self.path.read_bytes()))  # the magic and Header record so far
 
@@ -100,7 +110,7 @@ class LeanMcapWriter(McapWriter):
         super().close(version, metadata)
 
     def write(self, connection: Connection, timestamp: int, data: bytes | memoryview) -> None:
-        if self.DIRECT_BYTES is not None and len(data) >= self.DIRECT_BYTES and not self.compression:
+        if self.DIRECT_BYTES is not None and len(data) >= self.DIRECT_BYTES:
             self._write_own_chunk(connection, timestamp, data)
             return
         chunk = self.chunk
@@ -116,7 +126,7 @@ class LeanMcapWriter(McapWriter):
     def write_many(self, items: Sequence[tuple[Connection, bytes | memoryview]], timestamp: int) -> None:
         """Messages all logged at ``timestamp``: the same bytes as :meth:`write` one by one, the small
         ones in a row handed to the chunk buffer at once."""
-        direct = self.DIRECT_BYTES if not self.compression else None
+        direct = self.DIRECT_BYTES
         parts: list[bytes | memoryview] = []
         chunk = self.chunk
         pos = chunk.bio.tell()
@@ -173,17 +183,24 @@ class LeanMcapWriter(McapWriter):
         size = len(msg_head) + len(data)
         t = _U64.pack(timestamp)
         crc = zlib.crc32(data, zlib.crc32(msg_head))
-        head = t + t + _U64.pack(size) + _U32.pack(crc) + _U32.pack(0) + _U64.pack(size)
+        comp = self.compression.encode()
+        payload = None if self._compressor is None else self._compressor.compress((msg_head, data), size)
+        n_payload = size if payload is None else len(payload)
+        head = t + t + _U64.pack(size) + _U32.pack(crc) + _U32.pack(len(comp)) + comp + _U64.pack(n_payload)
         chunk_start = out.tell()
-        out.write(b"\x06" + _U64.pack(len(head) + size) + head + msg_head)
-        out.write(data)
+        if payload is None:
+            out.write(b"\x06" + _U64.pack(len(head) + size) + head + msg_head)
+            out.write(data)
+        else:
+            out.write(b"\x06" + _U64.pack(len(head) + n_payload) + head)
+            out.write(payload)
         chunk_end = out.tell()
         index_start = chunk_end
         out.write(b"\x07" + _U64.pack(22) + _U16.pack(connection.id) + _U32.pack(16) + t + _U64.pack(0))
         rec = BytesIO()
         rec.write(t + t + _U64.pack(chunk_start) + _U64.pack(chunk_end - chunk_start))
         rec.write(_U32.pack(10) + _U16.pack(connection.id) + _U64.pack(index_start))
-        rec.write(_U64.pack(out.tell() - chunk_end) + _U32.pack(0) + _U64.pack(size) + _U64.pack(size))
+        rec.write(_U64.pack(out.tell() - chunk_end) + _U32.pack(len(comp)) + comp + _U64.pack(n_payload) + _U64.pack(size))
         self.chunks.append(rec)
         out.flush()
 
@@ -191,7 +208,7 @@ class LeanMcapWriter(McapWriter):
         chunk = self.chunk
         size = chunk.bio.tell()
         buf = chunk.bio.getbuffer()
-        payload = self.compressor(bytes(buf)) if self.compression else buf
+        payload = buf if self._compressor is None else self._compressor.compress((buf,), size)
         n_payload = len(payload)
         comp = self.compression.encode()
         head = (
@@ -229,10 +246,14 @@ class LeanMcapWriter(McapWriter):
 
 
 class McapStorage(Rosbag2Storage):
-    """A rosbag2 directory with one ``.mcap`` file (:class:`LeanMcapWriter`)."""
+    """A rosbag2 directory with one ``.mcap`` file (:class:`LeanMcapWriter`), chunks compressed with :attr:`compression`."""
 
     format = "mcap"
     plugin = LeanMcapWriter
+
+    def open(self) -> None:
+        self.path.mkdir(mode=0o755, parents=True)  # FileExistsError: never overwrite a bag
+        self.writer = LeanMcapWriter(self.path, CompressionMode.NONE, self.compression)
 
     def _write_records(self, items: Sequence[tuple[Connection, bytes | memoryview]], timestamp: int) -> None:
         self.writer.write_many(items, timestamp)

@@ -70,7 +70,8 @@ class LeanRos1Writer(Writer):
 
 
 class Ros1Storage(BagStorage):
-    """A ROS 1 bag file (:class:`LeanRos1Writer`); ``/tf_static`` and other latched topics get ``latching=1``."""
+    """A ROS 1 bag file (:class:`LeanRos1Writer`), chunks compressed with :attr:`compression` (lz4, bz2 or none);
+    ``/tf_static`` and other latched topics get ``latching=1``."""
 
     format = "ros1"
     ros1 = True
@@ -79,6 +80,8 @@ class Ros1Storage(BagStorage):
 
     def open(self) -> None:
         self.writer = LeanRos1Writer(self.path)
+        if self.compression != "none":  # rosbags' compressors: bz2 level 9, lz4 level 0 (as ``rosbag record``)
+            self.writer.set_compression(Writer.CompressionFormat[self.compression.upper()])
         self.writer.open()
 
     def add_connection(self, topic: str, msgtype: str, *, latched: bool = False) -> Connection:

@@ -65,8 +65,16 @@ class Rosbag2Storage(BagStorage):
     plugin: ClassVar[Any]
     """The rosbags storage writer class (``McapWriter``, ``Sqlite3Writer`` or a subclass); :attr:`writer` is the open one."""
 
-    def __init__(self, path: Path, store: Typestore, *, fsync: bool = False, ros_distro: str = DEFAULT_ROS_DISTRO) -> None:
-        super().__init__(path, store, fsync=fsync, ros_distro=ros_distro)
+    def __init__(
+        self,
+        path: Path,
+        store: Typestore,
+        *,
+        fsync: bool = False,
+        ros_distro: str = DEFAULT_ROS_DISTRO,
+        compression: str | None = None,
+    ) -> None:
+        super().__init__(path, store, fsync=fsync, ros_distro=ros_distro, compression=compression)
         self.version = ROS_DISTROS[self.ros_distro]
         """rosbag2 metadata version written."""
         self.connections: list[Connection] = []
