@@ -1,0 +1,37 @@
+"""A speed and heading autopilot: set-points (surge speed, heading) → τ, for agents that command set-points.
+
+Surge: the steady resistance at the set speed as feed-forward plus a proportional term, X = d₁₁(u_d)·u_d +
+m₁₁·k_u·(u_d − u). Heading: a cascade — a yaw-rate reference r_d = k_ψ·(ψ_d − ψ) (the shorter way) limited to
+``max_yaw_rate``, and N = m₃₃·k_r·(r_d − r). Sway is left free (Y = 0). Stateless, so the loop stays a pure function
+of its state.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from seatwin.dynamics.integrate import VesselState
+from seatwin.dynamics.vessel import VesselParameters
+from seatwin.geo import wrap_to_pi
+
+
+@dataclass(frozen=True)
+class Autopilot:
+    """Gains and limits of the speed/heading controller."""
+
+    k_u: float = 0.5
+    """1/s: the surge error's time constant is about 1/k_u."""
+    k_psi: float = 0.6
+    """1/s"""
+    k_r: float = 2.0
+    """1/s"""
+    max_yaw_rate: float = 0.2
+    """rad/s (11.5°/s)."""
+
+    def force(self, p: VesselParameters, state: VesselState, speed: float, heading: float) -> tuple[float, float, float]:
+        """τ for surge speed ``speed`` [m/s] and ``heading`` [rad]."""
+        X = p.surge_damping(speed) + p.m11 * self.k_u * (speed - state.u)
+        r_d = self.k_psi * float(wrap_to_pi(heading - state.heading))
+        r_d = max(-self.max_yaw_rate, min(self.max_yaw_rate, r_d))
+        N = p.m33 * self.k_r * (r_d - state.r)
+        return X, 0.0, N
