@@ -8,7 +8,7 @@ samplers (random, Latin hypercube, adaptive falsification), placement on water, 
 """
 
 from seatwin.encounters.build import describe, encounter_scenario, save_encounter
-from seatwin.encounters.geometry import Kind, TargetGeometry, closest_approach, situation, target_start
+from seatwin.encounters.geometry import Kind, TargetGeometry, classify, closest_approach, situation, target_start
 from seatwin.encounters.place import EncounterPaths, Placement, paths, place
 from seatwin.encounters.space import (
     RANGES,
@@ -33,6 +33,7 @@ __all__ = [
     "TargetGeometry",
     "Trial",
     "adaptive_search",
+    "classify",
     "closest_approach",
     "describe",
     "encounter_scenario",

@@ -102,17 +102,23 @@ def target_start(own_speed: float, target: TargetGeometry) -> Start:
     return Start(n0, e0, float(wrap_to_pi(c)), bearing, math.hypot(n0, e0), aspect)
 
 
+def classify(bearing: float, aspect: float, relative_course: float, own_speed: float, target_speed: float) -> Kind:
+    """The COLREG situation from what the ownship sees (module docstring): the target's relative ``bearing`` from the
+    ownship's bow, the ownship's ``aspect`` from the target's bow, ``relative_course`` (target − ownship) [rad]."""
+    if abs(aspect) > math.radians(ABAFT_BEAM_DEG) and own_speed > target_speed:
+        return Kind.OVERTAKING
+    if abs(bearing) > math.radians(ABAFT_BEAM_DEG):
+        return Kind.OVERTAKEN
+    reciprocal = abs(float(wrap_to_pi(relative_course - math.pi))) <= math.radians(HEAD_ON_COURSE_DEG)
+    if reciprocal and abs(bearing) <= math.radians(HEAD_ON_BEARING_DEG):
+        return Kind.HEAD_ON
+    return Kind.CROSSING_GIVE_WAY if bearing > 0 else Kind.CROSSING_STAND_ON
+
+
 def situation(own_speed: float, target: TargetGeometry) -> Kind:
     """The COLREG situation of ``target`` with the ownship at the encounter's start (module docstring)."""
     s = target_start(own_speed, target)
-    if abs(s.aspect) > math.radians(ABAFT_BEAM_DEG) and own_speed > target.speed:
-        return Kind.OVERTAKING
-    if abs(s.bearing) > math.radians(ABAFT_BEAM_DEG):
-        return Kind.OVERTAKEN
-    reciprocal = abs(float(wrap_to_pi(target.relative_course - math.pi))) <= math.radians(HEAD_ON_COURSE_DEG)
-    if reciprocal and abs(s.bearing) <= math.radians(HEAD_ON_BEARING_DEG):
-        return Kind.HEAD_ON
-    return Kind.CROSSING_GIVE_WAY if s.bearing > 0 else Kind.CROSSING_STAND_ON
+    return classify(s.bearing, s.aspect, target.relative_course, own_speed, target.speed)
 
 
 def closest_approach(own: tuple[float, float, float, float], target: tuple[float, float, float, float]) -> tuple[float, float]:

@@ -49,20 +49,26 @@ class EncounterPaths:
     targets: tuple[WaypointPath, ...]
 
 
+SLACK_S = 40.0
+"""The ownship's scripted path reaches its goal this long before the encounter's end and waits there: the closed
+loop's agent has that long to spare for its detours."""
+
+
 def paths(encounter: Encounter, placement: Placement, start_time: float) -> EncounterPaths:
-    """The ownship and targets sailing straight through ``encounter`` from ``start_time``, sampled at 10 Hz."""
+    """The ownship and targets sailing straight through ``encounter`` from ``start_time``, sampled at 10 Hz; the
+    ownship stops at its goal :data:`SLACK_S` before the end."""
     d = encounter.duration
-    own_end = placement.to_world(encounter.own_speed * d, 0.0)
-    own = follow_waypoints(
-        [(placement.north, placement.east), (float(own_end[0]), float(own_end[1]))], encounter.own_speed, start_time, d, SAMPLE_DT
-    )
+    t = SAMPLE_DT * np.arange(int(round(d / SAMPLE_DT)) + 1)
+    along = encounter.own_speed * np.minimum(t, max(d - SLACK_S, 0.5 * d))
+    n, e = placement.to_world(along, np.zeros_like(along))
+    own = WaypointPath(start_time + t, n, e, np.full(t.shape, placement.course))
     targets = []
-    for t in encounter.targets:
-        s = target_start(encounter.own_speed, t)
+    for tg in encounter.targets:
+        s = target_start(encounter.own_speed, tg)
         a = placement.to_world(s.north, s.east)
-        b = placement.to_world(s.north + t.speed * d * math.cos(s.course), s.east + t.speed * d * math.sin(s.course))
+        b = placement.to_world(s.north + tg.speed * d * math.cos(s.course), s.east + tg.speed * d * math.sin(s.course))
         targets.append(
-            follow_waypoints([(float(a[0]), float(a[1])), (float(b[0]), float(b[1]))], t.speed, start_time, d, SAMPLE_DT)
+            follow_waypoints([(float(a[0]), float(a[1])), (float(b[0]), float(b[1]))], tg.speed, start_time, d, SAMPLE_DT)
         )
     return EncounterPaths(own, tuple(targets))
 
