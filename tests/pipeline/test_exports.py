@@ -49,6 +49,7 @@ VERB_CALLS: dict[str, tuple[str, ...]] = {
     "bag convert": ("convert_bag",),
     "view": ("RecordingViewer",),
     "harbour fit-alignment": ("fit_harbour_alignment", "write_alignment"),
+    "verify": ("run_verification",),
 }
 
 

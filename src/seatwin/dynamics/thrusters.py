@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cache
 
 import numpy as np
 from numpy.typing import NDArray
@@ -75,12 +76,17 @@ class ThrusterState:
         return cls((0.0,) * n, (0.0,) * n)
 
 
+@cache
+def _pseudo_inverse(config: ThrusterConfig) -> NDArray[np.float64]:
+    """T⁺ of a configuration (computed once per configuration: the loop allocates every step)."""
+    return np.linalg.pinv(config.configuration())
+
+
 def allocate(
     config: ThrusterConfig, tau: tuple[float, float, float], current: ThrusterState
 ) -> tuple[tuple[float, ...], tuple[float, ...]]:
     """Commanded (azimuths, thrusts) for the generalised force ``tau``; see the module docstring."""
-    T = config.configuration()
-    F = np.linalg.pinv(T) @ np.asarray(tau, dtype=float)
+    F = _pseudo_inverse(config) @ np.asarray(tau, dtype=float)
     fx, fy = F[0::2], F[1::2]
     thrust = np.hypot(fx, fy)
     limit = np.asarray(config.max_thrust, dtype=float)

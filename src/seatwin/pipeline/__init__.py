@@ -21,7 +21,7 @@ holds every verb's call (``seatwin <verb>`` only parses, calls one or two of the
 :func:`write_fidelity`), ``serve`` (:func:`serve`), ``record-stream`` (:func:`record_stream`),
 ``cosim`` (:func:`export_system`, :func:`run_system`), ``bag repair`` (:func:`repair_bag`), ``bag convert``
 (:func:`convert_bag`), ``view`` (:class:`RecordingViewer`), ``harbour fit-alignment`` (:func:`fit_harbour_alignment`,
-:func:`write_alignment`).
+:func:`write_alignment`), ``verify`` (:func:`run_verification`).
 
 Every import is lazy — a name's module is loaded when the name is first used — so the CLI starts fast,
 and the packages that build on this one (campaign, sweep, fidelity) load only when one of their names is.
@@ -78,6 +78,7 @@ _EXPORTS = {
     "RecordingViewer": "seatwin.recording.view",
     "fit_harbour_alignment": "seatwin.scenario.on_water",
     "write_alignment": "seatwin.layout.alignment",
+    "run_verification": "seatwin.verification.campaign",
 }
 
 __all__ = sorted(_EXPORTS)
