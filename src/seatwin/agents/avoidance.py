@@ -14,8 +14,10 @@ maritime autonomous navigation with COLREGS, using velocity obstacles", IEEE Jou
   ownship turns to starboard and passes behind; a target the ownship stands on for (crossing from port, overtaking
   the ownship) is ignored until its closest approach is under ``stand_on_time`` away (rule 17(b): act when the
   give-way vessel alone cannot avoid collision);
-* the chosen velocity minimises a weighted departure from the desired course and speed plus a change from the
-  previous choice (hysteresis); when every candidate is blocked, the one keeping farthest from all obstacles.
+* the chosen velocity minimises a weighted departure from the desired course and speed, a turn to port (weighted
+  extra) and a change from the previous choice (hysteresis); when every candidate is blocked, the one keeping
+  farthest from all obstacles;
+* the give-way constraint holds only while the target is forward of the ownship's beam.
 
 Guidance: lookahead-based line of sight to the straight path from start to goal (Fossen 2011, §10.3.2), the speed
 reduced within ``slow_down`` metres of the goal; on arrival (or past the goal) stop, holding the heading.
@@ -48,6 +50,8 @@ class AvoidanceParameters:
     w_course: float = 1.0
     w_speed: float = 0.5
     w_change: float = 0.5
+    w_port: float = 0.5
+    """Extra cost of a turn to port (rules 14, 15, 17(c): seamen alter to starboard)."""
     lookahead: float = 20.0
     """m: LOS lookahead distance."""
     slow_down: float = 20.0
@@ -116,7 +120,10 @@ def choose_velocity(
                 continue
         active.append(o)
         acting[o.id] = kind
-        colreg.append(kind in (Kind.HEAD_ON, Kind.CROSSING_GIVE_WAY))
+        # the give-way constraint holds while the target is forward of the ownship's beam (Kuwata et al. apply it
+        # before the crossing); abaft the beam it would force the ownship round after a target already passing
+        forward = abs(float(wrap_to_pi(math.atan2(pe, pn) - nav.heading))) < math.pi / 2
+        colreg.append(kind in (Kind.HEAD_ON, Kind.CROSSING_GIVE_WAY) and forward)
     if not active:
         return desired_speed, desired_course, {}
     courses = desired_course + np.radians(np.arange(-180.0, 180.0, p.course_step_deg))
@@ -136,8 +143,13 @@ def choose_velocity(
         blocked |= d < p.safety_radius
         if rule:
             blocked |= (pn * we - pe * wn) < 0  # relative velocity left of the line of sight: leaves it to starboard
-    dev = np.abs(np.asarray(wrap_to_pi(crs - desired_course)))
-    cost = p.w_course * dev / math.pi + p.w_speed * np.abs(speeds - desired_speed) / max(desired_speed, 0.1)
+    signed = np.asarray(wrap_to_pi(crs - desired_course))
+    dev = np.abs(signed)
+    cost = (
+        p.w_course * dev / math.pi
+        + p.w_port * np.maximum(-signed, 0.0) / math.pi
+        + p.w_speed * np.abs(speeds - desired_speed) / max(desired_speed, 0.1)
+    )
     if previous_course is not None:
         cost += p.w_change * np.abs(np.asarray(wrap_to_pi(crs - previous_course))) / math.pi
     free = np.flatnonzero(~blocked)

@@ -3,12 +3,14 @@
 Surge: the steady resistance at the set speed as feed-forward plus a proportional term, X = d₁₁(u_d)·u_d +
 m₁₁·k_u·(u_d − u), not below zero unless ``brake``.
 Heading: a cascade — a yaw-rate reference r_d = k_ψ·(ψ_d − ψ) (the shorter way) limited to
-``max_yaw_rate``, and N = m₃₃·k_r·(r_d − r). Sway is left free (Y = 0). Stateless, so the loop stays a pure function
+``max_yaw_rate``, and N = m₃₃·k_r·(r_d − r). Sway is left free (Y = 0). Under way the allocation keeps the azimuths in a cone
+about ahead (:meth:`Autopilot.cone`): the thrusters steer like rudders. Stateless, so the loop stays a pure function
 of its state.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from seatwin.dynamics.integrate import VesselState
@@ -28,9 +30,17 @@ class Autopilot:
     """1/s"""
     max_yaw_rate: float = 0.2
     """rad/s (11.5°/s)."""
+    cone_deg: float = 35.0
+    """Under way (a set speed over ``cone_speed``) the thrusters stay within this of ahead (``allocate``'s cone)."""
+    cone_speed: float = 0.3
+    """m/s"""
     brake: bool = False
     """Ask for astern force to slow down. Off by default: thrusters without reverse thrust must turn round for it,
     sweeping their force sideways on the way (the ferry spins); without it the ferry coasts down to a lower speed."""
+
+    def cone(self, speed: float) -> float | None:
+        """The allocation's azimuth cone [rad] for a set speed (None: full azimuth, manoeuvring at rest)."""
+        return math.radians(self.cone_deg) if speed > self.cone_speed else None
 
     def force(self, p: VesselParameters, state: VesselState, speed: float, heading: float) -> tuple[float, float, float]:
         """τ for surge speed ``speed`` [m/s] and ``heading`` [rad]."""

@@ -73,7 +73,13 @@ def step_thrusters(
 
 
 def step_force(
-    model: Model, thrusters: ThrusterConfig, state: VesselState, tau: tuple[float, float, float], dt: float
+    model: Model,
+    thrusters: ThrusterConfig,
+    state: VesselState,
+    tau: tuple[float, float, float],
+    dt: float,
+    cone: float | None = None,
 ) -> VesselState:
-    """One step with a desired generalised force ``tau`` (allocated to the thrusters first)."""
-    return step_thrusters(model, thrusters, state, allocate(thrusters, tau, state.thrusters), dt)
+    """One step with a desired generalised force ``tau`` (allocated to the thrusters first; ``cone`` as
+    :func:`~seatwin.dynamics.thrusters.allocate`)."""
+    return step_thrusters(model, thrusters, state, allocate(thrusters, tau, state.thrusters, cone), dt)

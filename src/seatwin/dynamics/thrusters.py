@@ -83,11 +83,20 @@ def _pseudo_inverse(config: ThrusterConfig) -> NDArray[np.float64]:
 
 
 def allocate(
-    config: ThrusterConfig, tau: tuple[float, float, float], current: ThrusterState
+    config: ThrusterConfig, tau: tuple[float, float, float], current: ThrusterState, cone: float | None = None
 ) -> tuple[tuple[float, ...], tuple[float, ...]]:
-    """Commanded (azimuths, thrusts) for the generalised force ``tau``; see the module docstring."""
+    """Commanded (azimuths, thrusts) for the generalised force ``tau``; see the module docstring.
+
+    ``cone`` [rad]: under way, keep every azimuth within ``cone`` of ahead — each thruster's forward component kept
+    (at least ``min_force``), its sideways one cut to ``forward · tan(cone)`` — so that the thrusters steer like
+    rudders instead of swinging broadside (and back, at their rate limit) whenever the surge demand drops; the yaw
+    moment is what is given up."""
     F = _pseudo_inverse(config) @ np.asarray(tau, dtype=float)
     fx, fy = F[0::2], F[1::2]
+    if cone is not None:
+        fx = np.maximum(fx, config.min_force)
+        lim = fx * math.tan(cone)
+        fy = np.clip(fy, -lim, lim)
     thrust = np.hypot(fx, fy)
     limit = np.asarray(config.max_thrust, dtype=float)
     over = float(np.max(thrust / limit))

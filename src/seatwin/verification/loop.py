@@ -277,7 +277,8 @@ def run_closed_loop(
             break
         if isinstance(command, SetPoint):
             nums = (command.speed, command.heading, 0.0)
-            state = step_force(model, thrusters, state, pilot.force(MILLIAMPERE, state, command.speed, command.heading), dt)
+            tau = pilot.force(MILLIAMPERE, state, command.speed, command.heading)
+            state = step_force(model, thrusters, state, tau, dt, pilot.cone(command.speed))
         elif isinstance(command, ForceCommand):
             nums = (command.X, command.Y, command.N)
             state = step_force(model, thrusters, state, (command.X, command.Y, command.N), dt)
