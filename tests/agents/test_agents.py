@@ -34,8 +34,17 @@ def test_los_follows_the_path_and_steers_back_to_it():
     assert course == pytest.approx(-math.pi / 4)  # 20 m to starboard of the path, 20 m lookahead: 45° back to port
     speed, course = los_guidance(nav(north=299.0, heading=0.3), MISSION, P)
     assert speed == 0.0 and course == 0.3  # arrived: stop, hold the heading
+    speed, course = los_guidance(nav(north=310.0, east=30.0), MISSION, P)
+    assert speed > 0 and course == pytest.approx(math.atan2(-30.0, -10.0))  # past the goal abeam: back to it
     speed, _ = los_guidance(nav(north=295.0), MISSION, P)
     assert 0.3 <= speed < 2.0  # slowing down for the goal
+
+
+def test_a_target_passing_clear_to_starboard_is_not_crossed_ahead_of():
+    target = TrackEstimate(8, 150.0, 15.0, -2.0, 0.0)  # head-on, passing 15 m to starboard: inside 20 m, but clear
+    speed, course, acting = choose_velocity(nav(), 2.0, 0.0, [target], P)
+    assert acting == {8: Kind.HEAD_ON}
+    assert course <= 0.0 or speed < 2.0  # widened to port of it (or slowed), never across its bow to starboard
 
 
 def test_no_obstacle_keeps_the_desired_velocity():

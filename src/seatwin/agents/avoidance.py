@@ -17,10 +17,12 @@ maritime autonomous navigation with COLREGS, using velocity obstacles", IEEE Jou
 * the chosen velocity minimises a weighted departure from the desired course and speed, a turn to port (weighted
   extra) and a change from the previous choice (hysteresis); when every candidate is blocked, the one keeping
   farthest from all obstacles;
-* the give-way constraint holds only while the target is forward of the ownship's beam.
+* the give-way constraint holds only while the target is forward of the ownship's beam, and not for a target
+  already passing clear to starboard (≥ half the safety radius): that pass is widened, not crossed (our departure).
 
 Guidance: lookahead-based line of sight to the straight path from start to goal (Fossen 2011, §10.3.2), the speed
-reduced within ``slow_down`` metres of the goal; on arrival (or past the goal) stop, holding the heading.
+reduced within ``slow_down`` metres of the goal, the last ``lookahead`` metres (or a goal passed abeam after a
+detour) steered straight for; stop within ``arrival`` metres, holding the heading.
 """
 
 from __future__ import annotations
@@ -69,8 +71,10 @@ def los_guidance(nav: Navigation, mission: Mission, p: AvoidanceParameters) -> t
     course = float(wrap_to_pi(path - math.atan2(cross, p.lookahead)))
     to_goal = math.hypot(mission.goal_north - nav.north, mission.goal_east - nav.east)
     along_left = (mission.goal_north - nav.north) * math.cos(path) + (mission.goal_east - nav.east) * math.sin(path)
-    if to_goal <= p.arrival or along_left <= 0:
+    if to_goal <= p.arrival:
         return 0.0, nav.heading  # arrived: stop and hold the heading
+    if along_left < p.lookahead:  # the last stretch (or past the goal after a detour): straight for the goal
+        course = math.atan2(mission.goal_east - nav.east, mission.goal_north - nav.north)
     return max(min_speed(mission, p), mission.cruise_speed * min(1.0, math.sqrt(to_goal / p.slow_down))), course
 
 
@@ -123,7 +127,12 @@ def choose_velocity(
         # the give-way constraint holds while the target is forward of the ownship's beam (Kuwata et al. apply it
         # before the crossing); abaft the beam it would force the ownship round after a target already passing
         forward = abs(float(wrap_to_pi(math.atan2(pe, pn) - nav.heading))) < math.pi / 2
-        colreg.append(kind in (Kind.HEAD_ON, Kind.CROSSING_GIVE_WAY) and forward)
+        # a target already passing clear to starboard (at least half the safety radius off) is passed wider on the
+        # same side rather than crossed ahead of (our departure from Kuwata et al., whose constraint would turn the
+        # ownship across its bow)
+        wn, we = nav.v_north - o.v_north, nav.v_east - o.v_east
+        clear_to_starboard = (pn * we - pe * wn) < 0 and d >= 0.5 * p.safety_radius
+        colreg.append(kind in (Kind.HEAD_ON, Kind.CROSSING_GIVE_WAY) and forward and not clear_to_starboard)
     if not active:
         return desired_speed, desired_course, {}
     courses = desired_course + np.radians(np.arange(-180.0, 180.0, p.course_step_deg))
