@@ -183,7 +183,7 @@ def summarise(rows: list[dict[str, Any]], agents: tuple[str, ...]) -> dict[str, 
 
 
 def plot_failure_map(rows: list[dict[str, Any]], agents: tuple[str, ...], path: Path) -> Path:
-    """Nominal CPA against the target's initial relative bearing, coloured by verdict; a panel per agent."""
+    """The CPA without avoidance against the target's initial relative bearing, coloured by verdict; a panel per agent."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -210,7 +210,7 @@ def plot_failure_map(rows: list[dict[str, Any]], agents: tuple[str, ...], path: 
         ax.set_xlabel("target's initial relative bearing [deg]")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
-    axes[0][0].set_ylabel("nominal CPA (target 1) [m]")
+    axes[0][0].set_ylabel("CPA without avoidance, target 1 [m] (+: to starboard)")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
