@@ -47,6 +47,14 @@ def test_a_target_passing_clear_to_starboard_is_not_crossed_ahead_of():
     assert course <= 0.0 or speed < 2.0  # widened to port of it (or slowed), never across its bow to starboard
 
 
+def test_an_agent_stopped_at_its_goal_still_gets_out_of_the_way():
+    target = TrackEstimate(6, -12.0, 0.0, 1.0, 0.0)  # coming up from astern onto a stopped ownship, 12 s away
+    stopped = nav(u=0.0)
+    assert choose_velocity(stopped, 0.0, 0.0, [target], P)[:2] == (0.0, 0.0)  # speeds scaled by 0: nowhere to go
+    speed, course, acting = choose_velocity(stopped, 0.0, 0.0, [target], P, speed_scale=2.0)
+    assert acting and speed > 0
+
+
 def test_no_obstacle_keeps_the_desired_velocity():
     assert choose_velocity(nav(), 2.0, 0.1, [], P) == (2.0, 0.1, {})
 

@@ -98,11 +98,13 @@ def choose_velocity(
     p: AvoidanceParameters,
     previous_course: float | None = None,
     engaged: dict[int, Kind] | None = None,
+    speed_scale: float | None = None,
 ) -> tuple[float, float, dict[int, Kind]]:
     """(speed, course) to sail now, and the obstacles acted on with their COLREG situation. An obstacle in
     ``engaged`` (acted on in the previous step) stays acted on, in the situation it was first classified as, until
     its closest approach is past — so neither a noisy track nor the ownship's own turn (which moves a head-on target
-    to its port side) makes the agent swing back."""
+    to its port side) makes the agent swing back. Candidate speeds are fractions of ``speed_scale`` (default the
+    desired speed): an agent stopped at its goal (desired speed 0) can still get out of a target's way."""
     engaged = engaged or {}
     active, colreg, acting = [], [], {}
     for o in obstacles:
@@ -137,7 +139,8 @@ def choose_velocity(
         return desired_speed, desired_course, {}
     courses = desired_course + np.radians(np.arange(-180.0, 180.0, p.course_step_deg))
     fractions = np.asarray(p.speed_fractions, dtype=float)
-    speeds = np.repeat(desired_speed * fractions, courses.size)
+    scale = desired_speed if speed_scale is None else max(speed_scale, desired_speed)
+    speeds = np.repeat(scale * fractions, courses.size)
     crs = np.tile(courses, fractions.size)
     vn, ve = speeds * np.cos(crs), speeds * np.sin(crs)
     blocked = np.zeros(speeds.size, dtype=bool)
@@ -157,7 +160,7 @@ def choose_velocity(
     cost = (
         p.w_course * dev / math.pi
         + p.w_port * np.maximum(-signed, 0.0) / math.pi
-        + p.w_speed * np.abs(speeds - desired_speed) / max(desired_speed, 0.1)
+        + p.w_speed * np.abs(speeds - desired_speed) / max(scale, 0.1)
     )
     if previous_course is not None:
         cost += p.w_change * np.abs(np.asarray(wrap_to_pi(crs - previous_course))) / math.pi

@@ -61,10 +61,9 @@ class ReferenceAgent:
             raise ParameterError("mission", "the agent was not reset with a mission before its first step")
         self._perception.update(frames)
         speed, course = los_guidance(navigation, self.mission, self.params)
-        if speed > 0:
-            speed, course, self.acting_on = choose_velocity(
-                navigation, speed, course, self.tracks(), self.params, self._previous, self.acting_on
-            )
+        speed, course, self.acting_on = choose_velocity(
+            navigation, speed, course, self.tracks(), self.params, self._previous, self.acting_on, self.mission.cruise_speed
+        )
         self._previous = course if self.acting_on else None
         return SetPoint(speed, course)
 

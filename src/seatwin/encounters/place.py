@@ -50,16 +50,22 @@ class EncounterPaths:
 
 
 SLACK_S = 40.0
-"""The ownship's scripted path reaches its goal this long before the encounter's end and waits there: the closed
-loop's agent has that long to spare for its detours."""
+"""The scenario runs this long past the encounter's :attr:`~seatwin.encounters.space.Encounter.duration`: the
+ownship's scripted path reaches its goal (``run_out`` seconds of sailing past the closest approach) and waits there,
+so the closed loop's agent has this long to spare for its detours."""
+
+
+def total_duration(encounter: Encounter) -> float:
+    """The scenario's length [s]: the encounter's duration plus :data:`SLACK_S`."""
+    return encounter.duration + SLACK_S
 
 
 def paths(encounter: Encounter, placement: Placement, start_time: float) -> EncounterPaths:
-    """The ownship and targets sailing straight through ``encounter`` from ``start_time``, sampled at 10 Hz; the
-    ownship stops at its goal :data:`SLACK_S` before the end."""
-    d = encounter.duration
+    """The ownship and targets sailing straight through ``encounter`` from ``start_time``, sampled at 10 Hz for
+    :func:`total_duration`; the ownship stops at its goal after the encounter's duration."""
+    d = total_duration(encounter)
     t = SAMPLE_DT * np.arange(int(round(d / SAMPLE_DT)) + 1)
-    along = encounter.own_speed * np.minimum(t, max(d - SLACK_S, 0.5 * d))
+    along = encounter.own_speed * np.minimum(t, encounter.duration)
     n, e = placement.to_world(along, np.zeros_like(along))
     own = WaypointPath(start_time + t, n, e, np.full(t.shape, placement.course))
     targets = []
@@ -75,7 +81,7 @@ def paths(encounter: Encounter, placement: Placement, start_time: float) -> Enco
 
 def _lines(encounter: Encounter, placement: Placement) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Every vessel's straight path once a second (what :func:`paths` samples at 10 Hz), scenario frame."""
-    t = np.arange(0.0, encounter.duration + 1.0, 1.0)
+    t = np.arange(0.0, total_duration(encounter) + 1.0, 1.0)
     n_loc, e_loc = [encounter.own_speed * t], [np.zeros_like(t)]
     for tg in encounter.targets:
         s = target_start(encounter.own_speed, tg)
@@ -123,6 +129,6 @@ def place(
             return pl, paths(encounter, pl, start_time)
     raise InputError(
         harbour,
-        f"found no place on water for the encounter ({encounter.duration:.0f} s, ownship {encounter.own_speed:.1f} m/s) "
+        f"found no place on water for the encounter ({total_duration(encounter):.0f} s, ownship {encounter.own_speed:.1f} m/s) "
         f"in {tries} tries with {clearance} m clearance: the harbour is too small for it; use a shorter encounter or open water",
     )

@@ -56,8 +56,9 @@ class Encounter:
     targets: tuple[TargetGeometry, ...]
     kinds: tuple[Kind, ...]
     """The COLREG kind each target was drawn as."""
-    run_out: float = 50.0
-    """Seconds simulated after the last closest approach."""
+    run_out: float = 30.0
+    """Seconds the ownship sails on after the last closest approach to its goal (the scenario then runs
+    :data:`seatwin.encounters.place.SLACK_S` longer)."""
 
     @property
     def duration(self) -> float:
@@ -89,7 +90,7 @@ class EncounterSpace:
     kinds: tuple[Kind, ...]
     own_speed: tuple[float, float] = OWN_SPEED
     ranges: dict[Kind, KindRanges] = field(default_factory=lambda: dict(RANGES))
-    run_out: float = 50.0
+    run_out: float = 30.0
 
     def __post_init__(self) -> None:
         if not self.kinds:
@@ -135,7 +136,7 @@ SPACES: dict[str, tuple[Kind, ...]] = {
 """Encounter families by name: one target of each kind, and ``multi`` (head-on and a give-way crossing at once)."""
 
 
-def space(name: str, run_out: float = 50.0, tcpa: tuple[float, float] | None = None) -> EncounterSpace:
+def space(name: str, run_out: float = 30.0, tcpa: tuple[float, float] | None = None) -> EncounterSpace:
     """The :class:`EncounterSpace` of a family of :data:`SPACES`; ``tcpa`` (low, high) [s] replaces every kind's TCPA
     range (shorter encounters fit a harbour: a crossing target sails tcpa × speed metres before the CPA)."""
     if name not in SPACES:

@@ -38,7 +38,7 @@ class VerifySpec(Settings):
     seed: int = Field(0, ge=0, description="Sampling seed; encounter i is placed and simulated with seed + i.")
     harbour: str = Field("none", description="'none' (open water), 'default', 'ravnkloa' or a raster path.")
     tcpa: tuple[float, float] | None = Field(None, description="[low, high] TCPA range [s] replacing the families'.")
-    run_out: float = Field(50.0, gt=0, description="Seconds simulated after the last closest approach.")
+    run_out: float = Field(30.0, gt=0, description="Seconds the ownship sails past the last closest approach to its goal.")
     safety_distance: float = Field(10.0, gt=0, description="The safety domain's radius [m] (centre to centre).")
     sensor_model: SensorModel = SensorModel()
     worst: int = Field(3, ge=0, description="Failed runs of modelled perception saved as scenarios with the sailed path.")
