@@ -5,7 +5,8 @@ and inside functions (and under ``TYPE_CHECKING``), read from the source with ``
 * no cycles between modules (importing a package runs its ``__init__``, so an import of a
   package stands for the modules its ``__init__`` imports);
 * no library module imports ``seatwin.cli``;
-* ``geo`` imports nothing else of seatwin; ``scenario`` and ``world`` do not import each other.
+* ``geo`` imports nothing else of seatwin; ``dynamics`` only ``geo`` and ``errors``; ``scenario`` and ``world`` do not
+  import each other.
 """
 
 from __future__ import annotations
@@ -178,3 +179,15 @@ def test_the_graph_sees_function_level_and_relative_imports() -> None:
     assert "seatwin.engine.embree" in g["seatwin.engine.backends"]  # imported inside make_caster
     assert "seatwin.layout.model" in g["seatwin.layout"]
     assert package_of("seatwin.errors") == "errors" and package_of("seatwin") == ""
+
+
+def test_dynamics_is_pure():
+    """``dynamics`` (vessel models, thrusters, autopilot) imports only ``geo`` and ``errors`` of seatwin."""
+    bad = sorted(
+        f"{m} imports {t}"
+        for m, ts in graph().items()
+        if package_of(m) == "dynamics"
+        for t in ts
+        if package_of(t) not in ("dynamics", "geo", "errors")
+    )
+    assert not bad

@@ -50,6 +50,7 @@ VERB_CALLS: dict[str, tuple[str, ...]] = {
     "view": ("RecordingViewer",),
     "harbour fit-alignment": ("fit_harbour_alignment", "write_alignment"),
     "harbour rasterize": ("land_raster_from_geojson", "write_land_raster"),
+    "verify": ("run_verification",),
 }
 
 

@@ -56,6 +56,7 @@ COMMAND_MODULES: list[str] = [
     "cosim",
     "harbour",
     "view",
+    "verify",
 ]
 
 

@@ -24,7 +24,8 @@ holds every verb's call (``seatwin <verb>`` only parses, calls one or two of the
 :func:`write_fidelity`), ``serve`` (:func:`serve`), ``record-stream`` (:func:`record_stream`),
 ``cosim`` (:func:`export_system`, :func:`run_system`), ``bag repair`` (:func:`repair_bag`), ``bag convert``
 (:func:`convert_bag`), ``view`` (:class:`RecordingViewer`), ``harbour fit-alignment`` (:func:`fit_harbour_alignment`,
-:func:`write_alignment`), ``harbour rasterize`` (:func:`land_raster_from_geojson`, :func:`write_land_raster`).
+:func:`write_alignment`), ``harbour rasterize`` (:func:`land_raster_from_geojson`, :func:`write_land_raster`),
+``verify`` (:func:`run_verification`).
 
 Every import is lazy — a name's module is loaded when the name is first used — so the CLI starts fast,
 and the packages that build on this one (campaign, sweep, fidelity) load only when one of their names is.
@@ -89,6 +90,7 @@ _EXPORTS = {
     "write_alignment": "seatwin.layout.alignment",
     "land_raster_from_geojson": "seatwin.layout.polygons",
     "write_land_raster": "seatwin.layout.raster",
+    "run_verification": "seatwin.verification.campaign",
 }
 
 __all__ = sorted(_EXPORTS)

@@ -42,7 +42,8 @@ class LandSamples:
     starts_on_land: bool
 
 
-def _is_water(harbour: HarbourLayout | LandRaster, north: np.ndarray, east: np.ndarray) -> np.ndarray:
+def is_water_in(harbour: HarbourLayout | LandRaster, north: np.ndarray, east: np.ndarray) -> np.ndarray:
+    """Scenario-frame points on ``harbour``'s water (outside a raster counts as land)."""
     if isinstance(harbour, LandRaster):
         return harbour.is_water(north, east, outside=False)
     return np.asarray(harbour.is_water(north, east), dtype=bool)
@@ -55,7 +56,7 @@ def land_samples(scenario: Scenario, harbour: HarbourLayout | LandRaster | None)
     out = []
     for v in scenario.vessels:
         tr = v.trajectory
-        land = ~_is_water(harbour, tr.north, tr.east)
+        land = ~is_water_in(harbour, tr.north, tr.east)
         if land.any():
             idx = np.flatnonzero(land)
             out.append(

@@ -1,0 +1,7 @@
+"""Closed-loop verification: the lock-step loop of agent, dynamics and simulated sensors (:mod:`.loop`) and the
+safety verdict of a run (:mod:`.verdict`)."""
+
+from seatwin.verification.loop import GrowingTrack, RunRecord, mission_from, run_closed_loop
+from seatwin.verification.verdict import Verdict, VerdictRules, hulls_overlap, judge
+
+__all__ = ["GrowingTrack", "RunRecord", "Verdict", "VerdictRules", "hulls_overlap", "judge", "mission_from", "run_closed_loop"]

@@ -1,0 +1,51 @@
+"""``seatwin verify``: the campaign of closed-loop runs, its outputs and its errors."""
+
+from __future__ import annotations
+
+import csv
+import json
+
+import pytest
+
+from seatwin.cli.main import run
+from seatwin.errors import InputError
+from seatwin.verification.campaign import newcombe, wilson
+from seatwin.verification.spec import load_verify_spec
+
+
+def test_intervals_against_hand_values():
+    lo, hi = wilson(0, 10)
+    assert lo == 0.0 and hi == pytest.approx(0.2775, abs=1e-4)  # Wilson 95 %: 0/10 → [0, 0.278]
+    lo, hi = wilson(5, 10)
+    assert (lo, hi) == pytest.approx((0.2366, 0.7634), abs=1e-4)
+    d, lo, hi = newcombe(56, 70, 48, 80)  # Newcombe (1998) Table II example: 0.2 [0.0524, 0.3339]
+    assert (d, lo, hi) == pytest.approx((0.2, 0.0524, 0.3339), abs=1e-4)
+
+
+def test_bad_spec_names_the_field_and_line(tmp_path):
+    p = tmp_path / "v.yaml"
+    p.write_text("agents: [perfect]\nencounters: 0\n")
+    with pytest.raises(InputError, match="line 2"):
+        load_verify_spec(p)
+    p.write_text("families: [head_on, collision]\n")
+    with pytest.raises(InputError, match="collision"):
+        load_verify_spec(p)
+
+
+def test_seatwin_verify_writes_results_a_summary_and_a_map(tmp_path, capsys):
+    spec = tmp_path / "v.yaml"
+    spec.write_text("agents: [perfect]\nfamilies: [head_on, crossing_give_way]\nencounters: 2\ntcpa: [30, 40]\nrun_out: 40\n")
+    out = tmp_path / "out"
+    assert run(["verify", str(spec), "--out", str(out), "--workers", "0", "--no-progress"]) == 0
+    printed = capsys.readouterr().out
+    assert "perfect: 0 of 4 runs fail" in printed
+    rows = list(csv.DictReader((out / "results.csv").open()))
+    assert len(rows) == 4 and {r["family"] for r in rows} == {"head_on", "crossing_give_way"}
+    assert all(r["passed"] == "True" for r in rows)
+    summary = json.loads((out / "verify.json").read_text())
+    assert summary["agents"]["perfect"]["runs"] == 4 and summary["cost"]["cpu_s_per_run_mean"] > 0
+    assert (out / "failure_map.png").stat().st_size > 10_000
+    # the same spec resumes from its jobs; another one is refused
+    assert run(["verify", str(spec), "--out", str(out), "--workers", "0", "--no-progress"]) == 0
+    spec.write_text("agents: [perfect]\nfamilies: [head_on]\nencounters: 2\ntcpa: [30, 40]\nrun_out: 40\n")
+    assert run(["verify", str(spec), "--out", str(out), "--workers", "0", "--no-progress"]) == 2
