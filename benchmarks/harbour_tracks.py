@@ -70,8 +70,9 @@ def track_figures(tracks: Any, mask: Any, v_limit: float) -> dict[str, int]:
 
 def scenario_row(csv: Path, sensor: str, duration: float | None, tmp: Path) -> dict[str, Any]:
     from seatwin.pipeline import track_recording
-    from seatwin.pipeline.evaluate import evaluate_run, recording_mask
+    from seatwin.pipeline.evaluate import evaluate_run
     from seatwin.pipeline.simulate import simulate_run
+    from seatwin.pipeline.track import recording_mask
     from seatwin.tracking import load_tuning
 
     run = tmp / f"{csv.stem}-{sensor}"
@@ -129,7 +130,7 @@ def dont_care(tracks: Any) -> dict[str, int]:
 def ravnkloa_row(csv: Path, base_map: Path, tmp: Path) -> dict[str, Any]:
     from seatwin.perception.datasets import import_ravnkloa_radar
     from seatwin.pipeline import track_recording
-    from seatwin.pipeline.evaluate import recording_mask
+    from seatwin.pipeline.track import recording_mask
     from seatwin.tracking import load_tuning
 
     rd = tmp / csv.stem

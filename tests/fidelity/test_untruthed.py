@@ -84,7 +84,7 @@ def test_on_a_ravnkloa_recording_no_track_is_on_land_and_no_clutter_is_a_vessel(
 
     from seatwin.perception.datasets import import_ravnkloa_radar
     from seatwin.pipeline import track_recording
-    from seatwin.pipeline.evaluate import recording_mask
+    from seatwin.pipeline.track import recording_mask
 
     folder = shared_data / "ravnkloa"
     csv = folder / "radar-2023" / "2023-08-26-11-59-55.csv"  # main's tracker: 2 tracks partly on land, a jumpy "vessel"

@@ -138,7 +138,7 @@ def test_a_run_records_the_harbour_it_was_simulated_in(shared_data, tmp_path) ->
     meta = json.loads((tmp_path / "r" / "manifest.json").read_text())["metadata"]
     assert meta["harbour"] == "ravnkloa" and meta["tracking"]["map"] == "ravnkloa"  # by name: the run stays portable
     from seatwin.perception.map_mask import RasterMask
-    from seatwin.pipeline.evaluate import recording_mask
+    from seatwin.pipeline.track import recording_mask
 
     assert isinstance(recording_mask(tmp_path / "r"), RasterMask)
     assert yaml.safe_load((tmp_path / "r" / "scenario.yaml").read_text())["environment"]["harbour"] == "ravnkloa"

@@ -77,10 +77,7 @@ def simulate_and_track(
 ) -> tuple[Any, dict[str, Tracks], object | None, np.ndarray, dict[str, float]]:
     """Simulate ``params``' run into ``work`` and track it per tuning: the scenario, tracks per tuning, water mask, the
     harbour's moored boats ((n, 2) north/east: don't-care vessels), timings."""
-    from seatwin.layout import moored_boat_positions
-    from seatwin.perception.map_mask import load_mask
-    from seatwin.pipeline.evaluate import recording_mask, recording_moored_boats
-    from seatwin.pipeline.track import track_recording
+    from seatwin.pipeline.track import harbour_of, track_recording
     from seatwin.scenario.load import load_scenario
     from seatwin.sim import simulate_scenario
 
@@ -107,8 +104,7 @@ def simulate_and_track(
     t2 = time.perf_counter()
     for tuning, tr in tracks.items():  # the run's own name, not its temporary folder's: results never depend on where it ran
         tr.source = f"{params['kind']} run of {params['scenario']}, seed {params['seed']} (tuning {tuning})"
-    mask = recording_mask(rec) if map_spec is None else load_mask(map_spec)
-    moored = recording_moored_boats(rec) if map_spec is None else moored_boat_positions(map_spec)
+    mask, moored = harbour_of(map_spec, rec)
     return scenario, tracks, mask, moored, {"simulate_s": t1 - t0, "track_s": t2 - t1}
 
 
@@ -126,7 +122,7 @@ def synthetic_job(params: dict[str, Any], reference: dict[str, Any]) -> dict[str
     from seatwin.campaign.results import comparison_rows
     from seatwin.evaluation.compare import CompareOptions, compare
     from seatwin.evaluation.truth import truth_from_scenario
-    from seatwin.pipeline.evaluate import moored_vessels
+    from seatwin.pipeline.track import moored_vessels
 
     options = TypeAdapter(CompareOptions).validate_python(params["comparison"])
     with tempfile.TemporaryDirectory(prefix="seatwin-campaign-") as tmp:

@@ -14,8 +14,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from seatwin.errors import InputError, ParameterError
-from seatwin.pipeline.evaluate import check_overlap, moored_vessels, recording_mask, recording_moored_boats
-from seatwin.pipeline.track import default_sensors, track_recording
+from seatwin.pipeline.evaluate import check_overlap
+from seatwin.pipeline.track import default_sensors, moored_vessels, recording_mask, recording_moored_boats, track_recording
 
 if TYPE_CHECKING:
     from seatwin.evaluation import CompareOptions, Comparison, Tracks, TruthSet

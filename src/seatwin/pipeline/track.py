@@ -14,6 +14,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal
 
+import numpy as np
+from numpy.typing import NDArray
 from pydantic import Field
 
 from seatwin.errors import InputError
@@ -107,7 +109,6 @@ def tracking_summary(
     import numpy as np
 
     from seatwin.evaluation import evaluate
-    from seatwin.pipeline.evaluate import harbour_of, moored_vessels
 
     tracks = result.tracks.confirmed_only()
     on_land = None
@@ -342,3 +343,53 @@ def track_into_run(
         "confirmed": result.n_confirmed,
     }
     return result, copy_with_messages(recording, out_bag, messages, added=added, overwrite=overwrite, param="out_bag")
+
+
+def recording_mask(spec: str | Path | None) -> object | None:
+    """The water mask a run directory's manifest names (:func:`seatwin.pipeline.track.map_hint`), else None."""
+    from seatwin.perception.map_mask import load_mask
+    from seatwin.recording.manifest import read_manifest
+
+    if spec is None or not Path(spec).is_dir():
+        return None
+    hint = map_hint(read_manifest(Path(spec)), Path(spec))
+    return None if hint is None else load_mask(hint)
+
+
+def recording_moored_boats(spec: str | Path | None) -> NDArray[np.float64]:
+    """(n, 2) north/east of the moored boats of the harbour a run directory's manifest names (its map hint:
+    :func:`seatwin.layout.moored_boat_positions`); none for anything else. They are real objects without ground
+    truth: tracks on them are don't-care, not false tracks."""
+    from seatwin.layout import moored_boat_positions
+    from seatwin.recording.manifest import read_manifest
+
+    if spec is None or not Path(spec).is_dir():
+        return np.empty((0, 2))
+    hint = map_hint(read_manifest(Path(spec)), Path(spec))
+    return np.empty((0, 2)) if hint is None else moored_boat_positions(hint)
+
+
+def harbour_of(map_spec: str | Path | None, run_dir: str | Path | None) -> tuple[object | None, NDArray[np.float64]]:
+    """The water mask and the moored boats' (n, 2) positions of ``map_spec``, or else of the harbour the run directory
+    ``run_dir``'s manifest names (none for anything else)."""
+    if map_spec is not None:
+        from seatwin.layout import moored_boat_positions
+        from seatwin.perception.map_mask import load_mask
+
+        return load_mask(map_spec), moored_boat_positions(map_spec)
+    return recording_mask(run_dir), recording_moored_boats(run_dir)
+
+
+def moored_vessels(points: NDArray[np.float64], truth: TruthSet, times: NDArray[np.float64] | None = None) -> TruthSet | None:
+    """Moored boats at ``points`` as don't-care vessels, still over the span of ``truth`` and ``times`` (a day either
+    side: a moored boat is there all along); None when there are none."""
+    from seatwin.evaluation import stationary_truth
+
+    if not len(points):
+        return None
+    spans = [t for tr in truth.targets.values() for t in (tr.start, tr.end)]
+    if times is not None and len(times):
+        spans += [float(np.min(times)), float(np.max(times))]
+    if not spans:
+        return None
+    return stationary_truth(points, min(spans) - 86400.0, max(spans) + 86400.0)
