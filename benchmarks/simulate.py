@@ -10,7 +10,7 @@ Prints JSON on its last line. Usage: python benchmarks/simulate.py [--duration S
 (``--sensors`` default ``lidar``, this benchmark's subject; ``lidar,camera`` is simulate's default run).
 
 Bag size (issue #23): ``--compare none/raw,default`` runs the same simulation once per variant
-(``COMPRESSION/IMAGE_FORMAT``; ``default`` = seatwin's defaults, zstd chunks and raw images), ``--repeats``
+(``COMPRESSION/IMAGE_FORMAT``; ``default`` = seatwin's defaults, lz4 chunks and raw images), ``--repeats``
 times in turn (A B A B …, so a slow spell of a shared machine hits all alike), and prints per variant the bag
 size, the best wall time, the real-time factor and the process CPU time, and their ratios to the first
 variant: ``python benchmarks/simulate.py --sensors lidar,camera --preset vlp16 --compare none/raw,default``.

@@ -101,10 +101,10 @@ def test_round_trip_each_format_and_compression(tmp_path: Path, fmt: str, compre
             assert (b"compression=" + kind.encode() in data) == (kind == compression)
 
 
-def test_defaults_are_zstd_for_mcap_and_lz4_for_ros1(tmp_path: Path) -> None:
+def test_defaults_are_lz4_for_mcap_and_ros1(tmp_path: Path) -> None:
     from seatwin.recording.info import bag_info, format_info
 
-    for fmt, want in (("mcap", "zstd"), ("ros1", "lz4"), ("sqlite3", "none")):
+    for fmt, want in (("mcap", "lz4"), ("ros1", "lz4"), ("sqlite3", "none")):
         with open_bag(_write(tmp_path / fmt, fmt, n=2)) as rec:
             assert rec.manifest["compression"] == want and rec.manifest["image_format"] == "raw"
             files = [rec.bag] if rec.bag.is_file() else [p for p in rec.bag.rglob("*") if p.is_file()]
@@ -116,7 +116,7 @@ def test_defaults_are_zstd_for_mcap_and_lz4_for_ros1(tmp_path: Path) -> None:
 @pytest.mark.parametrize(
     ("kwargs", "param", "needle"),
     [
-        ({"fmt": "mcap", "compression": "bz2"}, "compression", "expected one of zstd, lz4, none"),
+        ({"fmt": "mcap", "compression": "bz2"}, "compression", "expected one of lz4, zstd, none"),
         ({"fmt": "ros1", "compression": "zstd"}, "compression", "expected one of lz4, bz2, none"),
         ({"fmt": "sqlite3", "compression": "zstd"}, "compression", "expected one of none"),
         ({"fmt": "mcap", "image_format": "gif"}, "image_format", "expected one of raw, jpeg, png"),

@@ -44,16 +44,16 @@ def overwrite_option() -> Any:
 
 
 COMPRESSION_HELP = (
-    "Chunk compression of the bag: mcap zstd (default; level 1), lz4 or none; ros1 lz4 (default), bz2 or none; "
+    "Chunk compression of the bag: mcap lz4 (default), zstd (level 1) or none; ros1 lz4 (default), bz2 or none; "
     "sqlite3 none. Every reader (seatwin, rosbags, mcap, ROS tools) reads them."
 )
 
 
 def compression_option() -> Any:
-    """``--compression zstd|lz4|bz2|none`` of every verb that writes a bag (default: the format's own)."""
+    """``--compression lz4|zstd|bz2|none`` of every verb that writes a bag (default: the format's own)."""
     import typer
 
-    return typer.Option(None, "--compression", metavar="zstd|lz4|bz2|none", help=COMPRESSION_HELP)
+    return typer.Option(None, "--compression", metavar="lz4|zstd|bz2|none", help=COMPRESSION_HELP)
 
 
 def image_format_option() -> Any:

@@ -90,7 +90,7 @@ class RecordingWriter:
     manifest); ``sensors`` and ``metadata`` go into the manifest as given (JSON-serialisable).
     ``ros_distro`` picks a rosbag2 bag's metadata version (:data:`~seatwin.defaults.ROS_DISTROS`).
     ``compression``: the bag's chunk compression (:data:`~seatwin.defaults.COMPRESSIONS`; None: the format's
-    default, zstd for MCAP). ``image_format``: :meth:`write_image` writes ``sensor_msgs/Image`` (``raw``) or a
+    default, lz4 for MCAP and ROS 1). ``image_format``: :meth:`write_image` writes ``sensor_msgs/Image`` (``raw``) or a
     JPEG/PNG ``sensor_msgs/CompressedImage`` on ``<topic>/compressed`` (``jpeg``, ``png``).
     ``on_write`` sees every message written (:attr:`on_write`).
     """

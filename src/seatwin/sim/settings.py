@@ -24,7 +24,7 @@ class BagOptions(Settings):
 
     compression: Compression | None = Field(
         None,
-        description="Chunk compression of the bag: mcap zstd (default), lz4 or none; ros1 lz4 (default), bz2 or "
+        description="Chunk compression of the bag: mcap lz4 (default), zstd or none; ros1 lz4 (default), bz2 or "
         "none; sqlite3 none. None: the format's default.",
     )
     image_format: ImageFormat = Field(

@@ -14,7 +14,7 @@ CRCs (rosbags writes 0, "not written"): every chunk carries the CRC-32 of its re
 Data End record the CRC-32 of every byte before it (:class:`_CrcFile` keeps it while writing), so
 a reader can tell a damaged bag (``seatwin.recording.mcap_check``).
 
-Chunk compression (``chunk_compression``: ``zstd``, the default of seatwin's bags, ``lz4`` or ``none``):
+Chunk compression (``chunk_compression``: ``lz4``, the default of seatwin's bags, ``zstd`` or ``none``):
 each chunk's records are compressed as one frame (:class:`~seatwin.recording.storage.compression.ChunkCompressor`)
 — a large message's chunk from its head and data without joining them; the CRC is that of the
 uncompressed records, as the MCAP specification defines it. rosbag2's metadata says nothing of it
