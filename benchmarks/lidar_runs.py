@@ -78,3 +78,31 @@ def ensure_runs(jobs: list[tuple[str, str, int]], duration: float, cache: str, w
         return
     with ProcessPoolExecutor(workers) as pool:
         list(pool.map(_job, todo))
+
+
+def load_runs(jobs: list[tuple[str, str, int]], duration: float, cache: str) -> list[dict[str, Any]]:
+    """The cached runs of ``jobs`` (simulated by :func:`ensure_runs`), in order."""
+    return [simulate_run(s, m, k, duration, cache) for s, m, k in jobs]
+
+
+def score_pair(real: list[dict[str, Any]], synthetic: list[dict[str, Any]], block: int | None = 10) -> Any:
+    """The fidelity score with the sensor terms (``score_runs_with_sensor_terms``) of ``synthetic`` against ``real`` runs."""
+    from seatwin.evaluation.score import ScoreOptions
+    from seatwin.evaluation.sensor_score import score_runs_with_sensor_terms
+
+    return score_runs_with_sensor_terms(
+        [r["tracks"] for r in real],
+        [s["tracks"] for s in synthetic],
+        real[0]["truth"],
+        [r["evaluation"] for r in real],
+        [s["evaluation"] for s in synthetic],
+        ScoreOptions(block=block),
+    )
+
+
+def parallel_map(fn: Any, items: list[Any], workers: int) -> list[Any]:
+    """``[fn(x) for x in items]`` on ``workers`` processes (in order: the result never depends on ``workers``)."""
+    if workers <= 1:
+        return [fn(x) for x in items]
+    with ProcessPoolExecutor(workers) as pool:
+        return list(pool.map(fn, items))

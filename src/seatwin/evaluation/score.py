@@ -24,8 +24,8 @@ count compared between single runs has a sampling floor H ≈ 0.47 whatever its 
 * (S6) cluster shape: HED between Gaussians fitted to the lidar clusters' (log point count,
   log thickness) — what range noise, ray drop and dissipation change long before the tracks do.
 
-False tracks (S4b, :mod:`seatwin.evaluation.false_tracks`): each false track once, per minute. Lidar
-sensor-level terms (S7, :mod:`seatwin.evaluation.lidar_terms`): the targets' returns ranged to the truth.
+:mod:`seatwin.evaluation.sensor_score` builds on this module: false tracks each counted once, per minute
+(S4b, replacing the per-scan count here), and the lidar sensor-level terms (S7).
 
 Overall (S5): ``S = 1 − (1 − S̄)(1 − H_clutter)(1 − H_false)(1 − H_shape)(1 − H_lidar)``, ``S̄`` the mean of the
 defined target scores; terms that are undefined (no plots given, e.g. track files; no lidar
@@ -299,7 +299,8 @@ class FidelityScore:
     overall: ScoreValue
     targets: dict[str, ScoreValue]
     plots: dict[str, ScoreValue]
-    """Plot-level terms by name: ``clutter``, ``false_tracks``, ``shape``, ``lidar_returns``."""
+    """Plot-level terms by name: ``clutter``, ``false_tracks``, ``shape`` (and ``lidar_returns``:
+    :mod:`seatwin.evaluation.sensor_score`)."""
 
     def to_dict(self) -> dict:
         return {
@@ -413,50 +414,15 @@ def score_runs(
         "clutter": _refused(NO_PLOTS)
         if clutter_r is None or clutter_s is None
         else rate_score(clutter_r, clutter_s, o, stream="clutter"),
-        "false_tracks": _false_tracks(real, synthetic, vessels, o, window),
+        "false_tracks": rate_score(
+            run_far_tracks(real, vessels, o.clutter_gate, window),
+            run_far_tracks(synthetic, vessels, o.clutter_gate, window),
+            o,
+            stream="false_tracks",
+        ),
         "shape": _refused(NO_PLOTS) if shapes_r is None or shapes_s is None else shape_score(shapes_r, shapes_s, o),
     }
-    plots["lidar_returns"] = _lidar_returns(real, synthetic, truth, dont_care, o, window)
     return FidelityScore(overall_score(targets, plots, o), targets, plots)
-
-
-def _false_tracks(
-    real: Sequence[Tracks], synthetic: Sequence[Tracks], vessels: TruthSet, o: ScoreOptions, window: tuple[float, float] | None
-) -> ScoreValue:
-    """(S4b) False tracks per minute, each track once (:func:`seatwin.evaluation.false_tracks.false_track_score`); the
-    former per-scan count of false tracks alive (a long track weighs its lifetime) beside it in ``counts``."""
-    from seatwin.evaluation.false_tracks import false_track_score  # it builds on this module
-
-    out = false_track_score(real, synthetic, vessels, o, window)
-    alive = rate_score(
-        run_far_tracks(real, vessels, o.clutter_gate, window),
-        run_far_tracks(synthetic, vessels, o.clutter_gate, window),
-        o,
-        "false_tracks",
-    )
-    if alive.value is not None:
-        out.counts |= {
-            "alive_hellinger": alive.value,
-            **{f"alive_{k}": v for k, v in alive.counts.items() if k.startswith("rate_")},
-        }
-    return out
-
-
-def _lidar_returns(
-    real: Sequence[Tracks],
-    synthetic: Sequence[Tracks],
-    truth: TruthSet,
-    dont_care: TruthSet | None,
-    o: ScoreOptions,
-    window: tuple[float, float] | None,
-) -> ScoreValue:
-    """(S7) The lidar sensor-level terms combined (:func:`seatwin.evaluation.lidar_terms.lidar_returns_score`)."""
-    from seatwin.evaluation.lidar_terms import lidar_returns_score, run_lidar_samples  # it builds on this module
-
-    r, s = run_lidar_samples(real, truth, dont_care, window), run_lidar_samples(synthetic, truth, dont_care, window)
-    if r is None or s is None:
-        return _refused("no lidar cluster moments (not a lidar, or a track file)")
-    return lidar_returns_score(r, s, o)
 
 
 def clutter_counts(times: ArrayLike, plots: Sequence[ArrayLike], truth: TruthSet, gate: float) -> NDArray[np.int64]:
