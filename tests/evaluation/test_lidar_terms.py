@@ -196,3 +196,42 @@ def test_score_runs_carries_the_new_terms_and_the_former_false_track_value():
     assert f.plots["false_tracks"].value == 0.0 and f.plots["false_tracks"].counts["alive_hellinger"] == 0.0
     assert f.plots["lidar_returns"].value is None and "no lidar cluster moments" in f.plots["lidar_returns"].reason
     assert "lidar_returns" in f.overall.reason
+
+
+def test_lidar_scan_keeps_cluster_moments_and_the_plot_log_travels():
+    """The perception hands each cluster's count and covariance on (``cluster_moment_rows``), ``track_scans`` keeps
+    them with the sensor position, and a campaign job's JSON carries them (None for a scan that is no lidar sweep)."""
+    import json
+
+    from seatwin.campaign.job import tracks_from_json, tracks_to_json
+    from seatwin.perception.frames import SensorPose
+    from seatwin.perception.lidar import cluster_moment_rows, lidar_scan
+    from seatwin.perception.measurements import MeasurementKind, Scan
+    from seatwin.pipeline.track import track_scans
+
+    rng = np.random.default_rng(3)
+    eye = np.eye(3)
+    pose = SensorPose(np.array([5.0, -2.0, 0.0]), eye, eye, np.array([5.0, -2.0, 0.0]))
+    boat = np.column_stack([rng.normal(30.0, 0.05, 40), rng.normal(0.0, 1.5, 40), rng.uniform(-1.0, 0.5, 40)])
+    scans = [lidar_scan(boat, float(t), pose) for t in range(12)]
+    rows = cluster_moment_rows(scans[0])
+    assert rows is not None and rows.shape == (1, 4) and rows[0, 0] == 40
+    np.testing.assert_allclose(rows[0, 1:], np.cov(boat[:, :2], rowvar=False, ddof=0).ravel()[[0, 1, 3]], atol=1e-9)
+    radar = Scan(12.0, "radar", MeasurementKind.RANGE_BEARING, np.array([[100.0, 0.0]]))
+    assert cluster_moment_rows(radar) is None
+    tracks = track_scans([*scans, radar], "synthetic")
+    log = tracks.plots
+    assert log is not None and log.clusters is not None and log.sensor is not None
+    assert log.clusters[-1] is None and log.clusters[0].shape == (1, 4)
+    np.testing.assert_allclose(log.sensor[0], [5.0, -2.0])
+    back = tracks_from_json(json.loads(json.dumps(tracks_to_json(tracks)))).plots
+    assert back is not None and back.clusters is not None and back.clusters[-1] is None
+    np.testing.assert_array_equal(back.clusters[0], log.clusters[0])
+    np.testing.assert_array_equal(back.sensor, log.sensor)
+    truth = TruthSet({"a": _still("a", 30.0, 0.0, 20.0)}, "<test>")
+    s = lidar_return_samples(back, truth)
+    assert s is not None and s["a"].points.tolist() == [40.0] * 12
+    u = boat[:, :2].mean(axis=0)  # the points are in the sensor frame: the world centroid minus the sensor
+    u /= np.linalg.norm(u)
+    cov = np.cov(boat[:, :2], rowvar=False, ddof=0)
+    assert s["a"].depth[0] == pytest.approx(np.sqrt(u @ cov @ u), rel=1e-9)  # along the line of sight from the sensor
