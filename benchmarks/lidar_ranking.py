@@ -19,6 +19,8 @@ from functools import partial
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 sys.path.insert(0, str(Path(__file__).parent))
 
 from lidar_runs import MODELS, ensure_runs, load_runs, parallel_map, score_pair  # noqa: E402
@@ -27,7 +29,7 @@ REAL_OFFSET = 1000
 CRITERION = ("depthbuffer-legacy", "range_noise_0.1")
 
 
-def score_case(case: tuple[str, int], duration: float, cache: str) -> dict[str, Any]:
+def score_case(case: tuple[str, int], duration: float, cache: str, models: tuple[str, ...]) -> dict[str, Any]:
     """Every candidate's S5, S7 and S5 without S7 against the case's real run, and its lidar terms."""
     from seatwin.evaluation.lidar_terms import lidar_terms, run_lidar_samples
     from seatwin.evaluation.score import overall_score
@@ -35,7 +37,7 @@ def score_case(case: tuple[str, int], duration: float, cache: str) -> dict[str, 
     scenario, seed = case
     (real,) = load_runs([(scenario, "default", seed + REAL_OFFSET)], duration, cache)
     out: dict[str, Any] = {"scenario": scenario, "seed": seed, "models": {}}
-    for model in MODELS:
+    for model in models:
         (cand,) = load_runs([(scenario, model, seed)], duration, cache)
         f = score_pair([real], [cand])
         without = overall_score(f.targets, {k: v for k, v in f.plots.items() if k != "lidar_returns"})
@@ -47,6 +49,11 @@ def score_case(case: tuple[str, int], duration: float, cache: str) -> dict[str, 
             "S5_ci": [f.overall.ci_low, f.overall.ci_high],
             "S7": f.plots["lidar_returns"].value,
             "S5_without_S7": without.value,
+            "false_tracks": {
+                k: f.plots["false_tracks"].counts.get(k)
+                for k in ("alive_hellinger", "false_tracks_real", "false_tracks_synthetic")
+            }
+            | {"value": f.plots["false_tracks"].value},
             "parts": {k: v.value for k, v in f.plots.items()} | {"targets_mean": f.overall.counts.get("targets_mean")},
             "terms": {
                 k: {"difference": t.difference, "resolved": t.resolved, "sentence": t.sentence()} for k, t in terms.items()
@@ -70,25 +77,28 @@ def main() -> None:
     ap.add_argument("--scenarios", nargs="*", default=builtin_names())
     ap.add_argument("--seeds", nargs="*", type=int, default=[1, 2, 3])
     ap.add_argument("--duration", type=float, default=60.0)
+    ap.add_argument("--models", nargs="*", default=list(MODELS), choices=list(MODELS))
     ap.add_argument("--workers", type=int, default=1)
     ap.add_argument("--cache", default="/tmp/seatwin-lidarbench")
     ap.add_argument("--out", default=None)
     a = ap.parse_args()
     t0 = time.perf_counter()
     jobs = [(sc, "default", s + REAL_OFFSET) for sc in a.scenarios for s in a.seeds]
-    jobs += [(sc, m, s) for sc in a.scenarios for s in a.seeds for m in MODELS]
+    jobs += [(sc, m, s) for sc in a.scenarios for s in a.seeds for m in a.models]
     ensure_runs(jobs, a.duration, a.cache, a.workers)
     t1 = time.perf_counter()
     cases = parallel_map(
-        partial(score_case, duration=a.duration, cache=a.cache), [(sc, s) for sc in a.scenarios for s in a.seeds], a.workers
+        partial(score_case, duration=a.duration, cache=a.cache, models=tuple(a.models)),
+        [(sc, s) for sc in a.scenarios for s in a.seeds],
+        a.workers,
     )
-    others = tuple(m for m in MODELS if m != "default")
+    others = tuple(m for m in a.models if m != "default")
     summary = {}
     for label, key, against in (
         ("S5 vs legacy + noise 0.1 (criterion)", "S5", CRITERION),
-        ("S5 vs all three", "S5", others),
+        ("S5 vs every other candidate", "S5", others),
         ("S7 alone vs legacy + noise 0.1", "S7", CRITERION),
-        ("S7 alone vs all three", "S7", others),
+        ("S7 alone vs every other candidate", "S7", others),
         ("S5 without S7 vs legacy + noise 0.1", "S5_without_S7", CRITERION),
         *((f"S5 vs {m} alone", "S5", (m,)) for m in others),
         *((f"S7 vs {m} alone", "S7", (m,)) for m in others),
@@ -107,15 +117,19 @@ def main() -> None:
                     "computed": len(ts),
                 }
     print(f"runs {t1 - t0:.0f} s, scoring {time.perf_counter() - t1:.0f} s, {len(cases)} cases")
-    print("| case | " + " | ".join(f"{m} S5 / S7" for m in MODELS) + " |")
+    print("| case | " + " | ".join(f"{m} S5 / S7" for m in a.models) + " |")
     for c in cases:
         cells = [
-            f"{c['models'][m]['S5']:.3f} / {c['models'][m]['S7']:.3f}" if c["models"][m]["S7"] is not None else "–"
-            for m in MODELS
+            " / ".join("–" if c["models"][m][k] is None else f"{c['models'][m][k]:.3f}" for k in ("S5", "S7")) for m in a.models
         ]
         print(f"| {c['scenario']} s{c['seed']} | " + " | ".join(cells) + " |")
     for k, v in summary.items():
         print(f"{k}: default first in {v['first']} of {v['cases']}")
+    ft = [c["models"]["default"]["false_tracks"] for c in cases]
+    for key, label in (("value", "new (each track once, per minute)"), ("alive_hellinger", "former (alive per scan)")):
+        v = [x[key] for x in ft if x[key] is not None]
+        if v:
+            print(f"false-track term, default, {label}: {min(v):.3f}–{max(v):.3f}, mean {np.mean(v):.3f} over {len(v)} cases")
     for m, terms in resolved.items():
         print(m, {k: f"{v['resolved']}/{v['computed']} ({v['positive']} +)" for k, v in terms.items() if v["resolved"]})
     if a.out:
