@@ -144,6 +144,17 @@ def test_combined_distance_is_the_family_weighted_mean():
     assert len(lidar_term_specs()) == 15
 
 
+@settings(max_examples=40, deadline=None)
+@given(st.integers(2, 50), st.integers(2, 50), st.integers(0, 10_000))
+def test_the_1d_closed_form_is_the_score_s_gaussian_hellinger(n, m, seed):
+    from seatwin.evaluation.lidar_terms import gaussian_hellinger_1d
+    from seatwin.evaluation.score import error_hellinger
+
+    rng = np.random.default_rng(seed)
+    x, y = rng.normal(0.0, rng.uniform(0.001, 2.0), n), rng.normal(rng.normal(0, 2), rng.uniform(0.001, 2.0), m)
+    assert gaussian_hellinger_1d(x, y, 0.01) == pytest.approx(error_hellinger(x[:, None], y[:, None], 0.01), abs=1e-9)
+
+
 def test_bernoulli_hellinger_hand_values():
     assert bernoulli_hellinger(0.5, 0.5) == 0.0
     assert bernoulli_hellinger(0.0, 1.0) == pytest.approx(1.0)
