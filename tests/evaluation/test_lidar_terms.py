@@ -246,3 +246,36 @@ def test_lidar_scan_keeps_cluster_moments_and_the_plot_log_travels():
     u /= np.linalg.norm(u)
     cov = np.cov(boat[:, :2], rowvar=False, ddof=0)
     assert s["a"].depth[0] == pytest.approx(np.sqrt(u @ cov @ u), rel=1e-9)  # along the line of sight from the sensor
+
+
+def test_score_runs_with_sensor_terms_reports_the_lidar_terms_one_by_one():
+    """Two lidar runs that differ only in their returns' thickness: S7 > 0, the thickness term says "too thick",
+    and the JSON carries each term's sentence (what ``seatwin compare`` prints for the resolved ones)."""
+    from seatwin.evaluation import evaluate
+    from seatwin.evaluation.sensor_score import score_runs_with_sensor_terms
+
+    truth = TruthSet({"a": _still("a", 40.0, 0.0, 100.0)}, "<test>")
+    times = np.arange(0.0, 60.0, 0.5)
+
+    def run(thick: float, seed: int) -> Tracks:
+        rng = np.random.default_rng(seed)
+        rows, cents = [], []
+        for _ in times:
+            pts = np.column_stack([rng.normal(40.0, thick, 30), rng.normal(0.0, 2.0, 30)])
+            r, c = _moments(pts)
+            rows.append(r[None])
+            cents.append(c[None])
+        tr = _tracks([(t, 1, 40.0, 0.0) for t in times], times)
+        tr.plots = PlotLog(times, tuple(cents), None, np.zeros((len(times), 2)), tuple(rows))
+        return tr
+
+    real, synth = run(0.05, 1), run(0.3, 2)
+    ev_r, ev_s = evaluate(real, truth, 10.0), evaluate(synth, truth, 10.0)
+    f = score_runs_with_sensor_terms([real], [synth], truth, [ev_r], [ev_s], ScoreOptions(n_boot=40))
+    assert f.plots["lidar_returns"].value > 0.1 and f.plots["lidar_returns"].counts["d_thickness_25_50m"] > 0.5
+    t = f.lidar_terms["thickness_25_50m"]
+    assert t.resolved and t.difference > 0 and "too thick" in t.sentence()
+    d = f.to_dict()
+    assert "too thick" in d["lidar_terms"]["thickness_25_50m"]["sentence"] and d["lidar_returns"]["value"] > 0.1
+    same = score_runs_with_sensor_terms([real], [run(0.05, 3)], truth, [ev_r], [ev_r], ScoreOptions(n_boot=40))
+    assert same.plots["lidar_returns"].value < f.plots["lidar_returns"].value
