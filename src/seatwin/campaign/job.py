@@ -41,6 +41,10 @@ def tracks_to_json(tracks: Tracks) -> dict[str, Any]:
             "times": plots.times.tolist(),
             "positions": [np.asarray(p).tolist() for p in plots.positions],
             "shapes": None if plots.shapes is None else [np.asarray(f).tolist() for f in plots.shapes],
+            "sensor": None if plots.sensor is None else np.asarray(plots.sensor).tolist(),
+            "clusters": None
+            if plots.clusters is None
+            else [None if c is None else np.asarray(c).tolist() for c in plots.clusters],
         },
     }
 
@@ -63,11 +67,15 @@ def tracks_from_json(data: dict[str, Any]) -> Tracks:
         from seatwin.evaluation.tracks_io import PlotLog
 
         p = data["plots"]
-        shapes = p.get("shapes")
+        shapes, sensor, clusters = p.get("shapes"), p.get("sensor"), p.get("clusters")
         tracks.plots = PlotLog(
             np.asarray(p["times"], dtype=float),
             tuple(np.asarray(x, dtype=float).reshape(-1, 2) for x in p["positions"]),
             None if shapes is None else tuple(np.asarray(x, dtype=float).reshape(-1, 2) for x in shapes),
+            None if sensor is None else np.asarray(sensor, dtype=float).reshape(-1, 2),
+            None
+            if clusters is None
+            else tuple(None if x is None else np.asarray(x, dtype=float).reshape(-1, 4) for x in clusters),
         )
     return tracks
 

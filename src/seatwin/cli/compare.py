@@ -212,6 +212,9 @@ def register(app: typer.Typer) -> None:
             value = "undefined" if o["value"] is None else f"{o['value']:.3f} [{o['ci_low']:.3f}, {o['ci_high']:.3f}]"
             why = f" ({o['reason']})" if o["reason"] else ""
             typer.echo(f"fidelity score{' (tuning ' + tun + ')' if tun else ''}: {value}{why}")
+            for term in (sc.get("lidar_terms") or {}).values():  # the lidar sensor-level terms the model is off in
+                if term["resolved"]:
+                    typer.echo(f"  {term['sentence']}")
         for ft in table["false_tracks"]:
             for side in ("real", "synthetic"):
                 f = ft[side]

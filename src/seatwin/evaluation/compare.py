@@ -29,7 +29,8 @@ from seatwin.evaluation.association import DEFAULT_GATE_M
 from seatwin.evaluation.evaluate import Evaluation, evaluate
 from seatwin.evaluation.hellinger import FORMS, HellingerForm, covdiff, hellinger
 from seatwin.evaluation.metrics import rms
-from seatwin.evaluation.score import FidelityScore, ScoreOptions, score_runs
+from seatwin.evaluation.score import FidelityScore, ScoreOptions
+from seatwin.evaluation.sensor_score import score_runs_with_sensor_terms
 from seatwin.evaluation.tracks_io import Tracks
 from seatwin.evaluation.truth import TruthSet
 
@@ -290,13 +291,15 @@ def compare(
     on land are counted with the water ``mask`` when given; tracks of a vessel of ``dont_care`` (no reliable ground
     truth: AIS-only vessels, moored boats) are not false tracks (:func:`seatwin.evaluation.evaluate.false_tracks`), and
     the score leaves plots and tracks near one out of its clutter and false-track terms
-    (:func:`seatwin.evaluation.score.score_runs`)."""
+    (:func:`seatwin.evaluation.sensor_score.score_runs_with_sensor_terms`)."""
     options = options or CompareOptions()
     ev_r = evaluate(real, truth, options.gate, options.confirmed_only, options.confidence, mask, dont_care)
     ev_s = evaluate(synthetic, truth, options.gate, options.confirmed_only, options.confidence, mask, dont_care)
     result = Comparison(tuning, options, ev_r, ev_s)
     if options.score is not None:
-        result.score = score_runs([real], [synthetic], truth, [ev_r], [ev_s], options.score, dont_care=dont_care)
+        result.score = score_runs_with_sensor_terms(
+            [real], [synthetic], truth, [ev_r], [ev_s], options.score, dont_care=dont_care
+        )
     for name in truth.names:
         series, line = compare_target(ev_r, ev_s, truth, name, tuning, options)
         if result.score is not None:

@@ -24,7 +24,10 @@ count compared between single runs has a sampling floor H ≈ 0.47 whatever its 
 * (S6) cluster shape: HED between Gaussians fitted to the lidar clusters' (log point count,
   log thickness) — what range noise, ray drop and dissipation change long before the tracks do.
 
-Overall (S5): ``S = 1 − (1 − S̄)(1 − H_clutter)(1 − H_false)(1 − H_shape)``, ``S̄`` the mean of the
+:mod:`seatwin.evaluation.sensor_score` builds on this module: false tracks each counted once, per minute
+(S4b, replacing the per-scan count here), and the lidar sensor-level terms (S7).
+
+Overall (S5): ``S = 1 − (1 − S̄)(1 − H_clutter)(1 − H_false)(1 − H_shape)(1 − H_lidar)``, ``S̄`` the mean of the
 defined target scores; terms that are undefined (no plots given, e.g. track files; no lidar
 clusters) are left out and named.
 
@@ -296,7 +299,8 @@ class FidelityScore:
     overall: ScoreValue
     targets: dict[str, ScoreValue]
     plots: dict[str, ScoreValue]
-    """Plot-level terms by name: ``clutter``, ``false_tracks``, ``shape``."""
+    """Plot-level terms by name: ``clutter``, ``false_tracks``, ``shape`` (and ``lidar_returns``:
+    :mod:`seatwin.evaluation.sensor_score`)."""
 
     def to_dict(self) -> dict:
         return {

@@ -47,6 +47,12 @@ class PlotLog:
     shapes: tuple[NDArray[np.float64], ...] | None = None
     """Per scan, (M, 2) shape features of lidar clusters: log point count, log(thickness + 1 cm)
     (:func:`seatwin.perception.cluster.minor_spread`); None for sensors without cluster shapes."""
+    sensor: NDArray[np.float64] | None = None
+    """(n, 2) north/east of the sensor at each scan; None when not kept."""
+    clusters: tuple[NDArray[np.float64] | None, ...] | None = None
+    """Per scan, (M, 4) per lidar cluster: point count and horizontal covariance ``nn, ne, ee`` [m²]
+    (:func:`seatwin.perception.lidar.cluster_moment_rows`), None for a scan that is no lidar sweep; None when
+    not kept."""
 
 
 @dataclass

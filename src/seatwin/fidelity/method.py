@@ -203,17 +203,17 @@ def window_score(
     options: ScoreOptions,
     dont_care: TruthSet | None = None,
 ) -> FidelityScore:
-    """The unpaired fidelity score (:func:`seatwin.evaluation.score.score_runs`) of the synthetic runs
+    """The unpaired fidelity score (:func:`seatwin.evaluation.sensor_score.score_runs_with_sensor_terms`) of the synthetic runs
     (all seeds pooled) against the real run, on ``window``: target errors and coverage, clutter plots per
     scan and plot shapes (from the runs' plot logs; radar plots carry no shape) and false tracks, all
     inside the window."""
     from seatwin.evaluation import CompareOptions
-    from seatwin.evaluation.score import score_runs
+    from seatwin.evaluation.sensor_score import score_runs_with_sensor_terms
 
     copts = CompareOptions(score=options)
     evals_real = [window_evaluation(real, truth, window, copts)]
     evals_synth = [window_evaluation(s, truth, window, copts) for s in synthetic]
-    return score_runs([real], synthetic, truth, evals_real, evals_synth, options, window, dont_care)
+    return score_runs_with_sensor_terms([real], synthetic, truth, evals_real, evals_synth, options, window, dont_care)
 
 
 def _agent_result(

@@ -84,6 +84,7 @@ def lidar_scan(
         extra={
             "cluster_sizes": counts,
             "cluster_thickness": minor_spread(cov),
+            "cluster_cov": cov,
             "n_points": int(pts.shape[0]),
             "n_kept": int(keep.sum()),
         },
@@ -101,3 +102,14 @@ def cluster_shape_features(scan: Scan) -> NDArray[np.float64]:
     if sizes is None or thick is None:
         return np.zeros((0, 2))
     return np.column_stack([np.log(np.asarray(sizes, float)), np.log(np.asarray(thick, float) + SHAPE_FLOOR_M)])
+
+
+def cluster_moment_rows(scan: Scan) -> NDArray[np.float64] | None:
+    """(M, 4) per cluster of a lidar scan: point count and horizontal covariance ``nn, ne, ee`` [m²] (population,
+    about the centroid) — what the sensor-level lidar terms (:mod:`seatwin.evaluation.lidar_terms`) need; None
+    for a scan that is not a clustered lidar sweep (radar plots)."""
+    sizes, cov = scan.extra.get("cluster_sizes"), scan.extra.get("cluster_cov")
+    if sizes is None or cov is None:
+        return None
+    c = np.asarray(cov, float).reshape(-1, 2, 2)
+    return np.column_stack([np.asarray(sizes, float), c[:, 0, 0], c[:, 0, 1], c[:, 1, 1]])

@@ -160,7 +160,7 @@ def track_scans(
 
     from seatwin.evaluation import Tracks
     from seatwin.evaluation.tracks_io import PlotLog
-    from seatwin.perception.lidar import cluster_shape_features
+    from seatwin.perception.lidar import cluster_moment_rows, cluster_shape_features
     from seatwin.perception.measurements import MeasurementKind
     from seatwin.tracking import JIPDATracker, load_tuning, run_tracker
     from seatwin.tracking.gnn import GNNTracker
@@ -174,12 +174,16 @@ def track_scans(
     plot_times: list[float] = []
     plot_positions: list[np.ndarray] = []
     plot_shapes: list[np.ndarray] = []
+    plot_sensor: list[np.ndarray] = []
+    plot_clusters: list[np.ndarray | None] = []
 
     def seen(scan: Scan) -> None:
         if scan.kind is not MeasurementKind.BEARING:
             plot_times.append(scan.time)
             plot_positions.append(scan.positions())
             plot_shapes.append(cluster_shape_features(scan))
+            plot_sensor.append(scan.sensor_position)
+            plot_clusters.append(cluster_moment_rows(scan))
         if on_scan is not None:
             on_scan(scan)
 
@@ -194,7 +198,13 @@ def track_scans(
         tab.confirmed,
         scan_times=run.scan_times,
         source=f"{source} (tuning {cfg.name}, {agent})",
-        plots=PlotLog(np.asarray(plot_times, dtype=float), tuple(plot_positions), tuple(plot_shapes)),
+        plots=PlotLog(
+            np.asarray(plot_times, dtype=float),
+            tuple(plot_positions),
+            tuple(plot_shapes),
+            np.asarray(plot_sensor, dtype=float).reshape(-1, 2),
+            tuple(plot_clusters),
+        ),
     )
 
 

@@ -1,0 +1,117 @@
+"""Coverage of the lidar intervals: N pairs of independent recordings of one model (issue 22, item 2; lidar).
+
+Pair i is the default model at seeds ``base + 2i`` (A, "real") and ``base + 2i + 1`` (B, "model") on one
+scenario's centred window. Criteria (fixed in docs/fidelity-score.md before the runs): a signed lidar term is
+covered when the 95 % interval of B − A holds 0 and when A's own interval holds the pooled value (all 2N
+recordings); a distance (S7 lidar terms, S4b false tracks, the other S5 parts, S5) when its interval's lower
+bound is 0. Both with the default blocks (10 scans) and with blocks chosen from the data. Also the spread of the
+false-track term, former (alive per scan) and new (each track once, per minute), over the pairs.
+
+    .venv/bin/python benchmarks/lidar_calibration.py --pairs 50 --workers 16 --out /tmp/lidar_calibration.json
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from functools import partial
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).parent))
+
+from lidar_runs import ensure_runs, load_runs, parallel_map, score_pair  # noqa: E402
+
+
+def _holds(ci: Any, x: float) -> bool | None:
+    return None if ci is None or ci[0] is None else bool(ci[0] - 1e-12 <= x <= ci[1] + 1e-12)
+
+
+def score_one(pair: tuple[int, int], scenario: str, duration: float, cache: str, pooled: dict[str, float]) -> dict[str, Any]:
+    """Coverage flags of one pair (A, B), for both block rules."""
+    from seatwin.evaluation.lidar_terms import lidar_terms, run_lidar_samples
+
+    a, b = load_runs([(scenario, "default", pair[0]), (scenario, "default", pair[1])], duration, cache)
+    out: dict[str, Any] = {"seeds": pair, "signed": {}, "distance": {}}
+    sa, sb = run_lidar_samples([a["tracks"]], a["truth"]), run_lidar_samples([b["tracks"]], a["truth"])
+    for k, t in lidar_terms(sa, sb).items():  # type: ignore[arg-type]
+        if t.difference is not None:
+            out["signed"][k] = {
+                "diff_covers_0": _holds(t.difference_ci, 0.0),
+                "a_covers_pooled": _holds(t.real_ci, pooled.get(k, np.nan)),
+            }
+    for block, tag in ((10, "block10"), (None, "data")):
+        f = score_pair([a], [b], block)
+        parts = {"S5": f.overall, **f.plots, **{f"target {k}": v for k, v in f.targets.items()}}
+        out["distance"][tag] = {
+            k: {"value": v.value, "ci": [v.ci_low, v.ci_high], "covers_0": None if v.ci_low is None else v.ci_low <= 1e-12}
+            for k, v in parts.items()
+            if v.value is not None
+        }
+        if tag == "block10":
+            ft = f.plots["false_tracks"]
+            out["false_tracks"] = {"new": ft.value, "former": ft.counts.get("alive_hellinger"), **ft.counts}
+    return out
+
+
+def share(flags: list[bool | None]) -> tuple[int, int]:
+    got = [f for f in flags if f is not None]
+    return sum(got), len(got)
+
+
+def main() -> None:
+    from seatwin.evaluation.lidar_terms import lidar_terms, run_lidar_samples
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--pairs", type=int, default=50)
+    ap.add_argument("--scenario", default="ferry_crossing")
+    ap.add_argument("--duration", type=float, default=60.0)
+    ap.add_argument("--base", type=int, default=2000)
+    ap.add_argument("--workers", type=int, default=1)
+    ap.add_argument("--cache", default="/tmp/seatwin-lidarbench")
+    ap.add_argument("--out", default=None)
+    a = ap.parse_args()
+    t0 = time.perf_counter()
+    seeds = list(range(a.base, a.base + 2 * a.pairs))
+    ensure_runs([(a.scenario, "default", s) for s in seeds], a.duration, a.cache, a.workers)
+    t1 = time.perf_counter()
+    runs = load_runs([(a.scenario, "default", s) for s in seeds], a.duration, a.cache)
+    every = run_lidar_samples([r["tracks"] for r in runs], runs[0]["truth"])
+    pooled = {k: t.real for k, t in lidar_terms(every, every).items() if t.real is not None}  # type: ignore[arg-type]
+    pairs = [(seeds[2 * i], seeds[2 * i + 1]) for i in range(a.pairs)]
+    res = parallel_map(
+        partial(score_one, scenario=a.scenario, duration=a.duration, cache=a.cache, pooled=pooled), pairs, a.workers
+    )
+    print(f"{a.pairs} pairs of {a.scenario} ({a.duration:g} s): runs {t1 - t0:.0f} s, scoring {time.perf_counter() - t1:.0f} s")
+    print("| lidar term | pooled value | difference covers 0 | A covers pooled |")
+    table: dict[str, Any] = {"signed": {}, "distance": {}}
+    for k, v in pooled.items():
+        d, p = (
+            share([r["signed"].get(k, {}).get("diff_covers_0") for r in res]),
+            share([r["signed"].get(k, {}).get("a_covers_pooled") for r in res]),
+        )
+        table["signed"][k] = {"pooled": v, "diff_covers_0": d, "a_covers_pooled": p}
+        print(f"| {k} | {v:.4g} | {d[0]}/{d[1]} | {p[0]}/{p[1]} |")
+    for tag in ("block10", "data"):
+        names = sorted({k for r in res for k in r["distance"][tag]})
+        for k in names:
+            c = share([r["distance"][tag].get(k, {}).get("covers_0") for r in res])
+            vals = [r["distance"][tag][k]["value"] for r in res if k in r["distance"][tag]]
+            table["distance"].setdefault(tag, {})[k] = {"covers_0": c, "mean": float(np.mean(vals))}
+            print(f"{tag}: {k}: interval holds 0 in {c[0]}/{c[1]}, mean value {np.mean(vals):.3f}")
+    ft = {w: [r["false_tracks"][w] for r in res if r["false_tracks"].get(w) is not None] for w in ("new", "former")}
+    for w, v in ft.items():
+        if v:
+            print(
+                f"false-track term ({w}): min {min(v):.3f}, max {max(v):.3f}, mean {np.mean(v):.3f}, sd {np.std(v, ddof=1):.3f}"
+            )
+    if a.out:
+        Path(a.out).write_text(json.dumps({"args": vars(a), "table": table, "false_tracks": ft, "pairs": res}, indent=1))
+
+
+if __name__ == "__main__":
+    main()
