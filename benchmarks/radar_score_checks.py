@@ -1,0 +1,332 @@
+"""Issue 22's checks of the radar sensor score by simulation (docs/fidelity-score.md, *Evaluations of issue 22*).
+
+    .venv/bin/python benchmarks/radar_score_checks.py calibration [PAIRS] [SCANS] [WORKERS]
+    .venv/bin/python benchmarks/radar_score_checks.py controlled [RECORDINGS] [SCANS] [WORKERS]
+    .venv/bin/python benchmarks/radar_score_checks.py power [PAIRS] [SCANS] [WORKERS]
+
+* ``calibration`` (default 50 pairs of 238 scans): the coverage of every signed plot-level term's 95 % interval
+  over pairs of recordings of one known model, as ``plot_terms_calibration.py`` measures it, plain and with a
+  drifting bearing offset (AR(1), φ 0.9, stationary σ 0.3°) — the autocorrelated case;
+* ``controlled`` (default 40 recordings of 238 scans): parameters drawn at random per recording, the true model
+  against 10 wrong ones ranked by the radar sensor score; how often the true model is first, and how often bearing
+  bias +1°, σ_r × 2, σ_θ × 2 and Pd cap ∓ 0.2 are resolved;
+* ``power`` (default 20 pairs at 1×, 2×, 4× of 238 scans): the minimum detectable difference per term.
+
+Each prints a table and, on its last line, its figures as JSON. Radar-only (no tracker): a recording is the
+replica's plots on the orbit scene (:func:`seatwin.fidelity.synthetic.orbit_dataset`).
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import time
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from seatwin.evaluation.plot_terms import (
+    RadarPlotSample,
+    radar_plot_sample,
+    radar_plot_terms,
+    radar_sensor_score,
+    sensor_lead,
+)
+from seatwin.evaluation.score import ScoreOptions
+from seatwin.fidelity.joyride import TARGET, antenna_positions
+from seatwin.fidelity.method import RADAR_CLUTTER_GATE_M, truth_of
+from seatwin.fidelity.synthetic import orbit_dataset
+from seatwin.sensors.radar.config import RadarConfig
+
+KNOWN = RadarConfig(
+    noise={"range_sigma_m": 6.0, "range_bias_m": 0.0, "bearing_sigma_deg": 0.6, "bearing_bias_deg": -1.0},
+    clutter={"kind": "uniform", "density_per_km2": 1.0},
+    detection={"snr_ref_db": 15.0, "pd_max": 0.85},
+    max_range_m=1000.0,
+)
+"""The known model of the calibration and power checks (plot_terms_calibration.py's)."""
+AREA_KM2 = float(np.pi * (KNOWN.max_range_m**2 - KNOWN.min_range_m**2) / 1e6)
+SYNTHETIC_SEEDS = 2
+"""Seeds pooled on the model side of the controlled and power checks."""
+Z_POWER = 1.959964 + 0.841621
+"""z of a two-sided 95 % test plus z of 80 % power."""
+
+
+def with_noise(cfg: RadarConfig, **update: float) -> RadarConfig:
+    return cfg.model_copy(update={"noise": cfg.noise.model_copy(update=update)})
+
+
+def with_pd(cfg: RadarConfig, pd_max: float) -> RadarConfig:
+    return cfg.model_copy(update={"detection": cfg.detection.model_copy(update={"pd_max": pd_max})})
+
+
+def with_clutter(cfg: RadarConfig, factor: float) -> RadarConfig:
+    d = cfg.clutter.density_per_km2 * factor
+    return cfg.model_copy(update={"clutter": cfg.clutter.model_copy(update={"density_per_km2": d})})
+
+
+@dataclass(frozen=True)
+class Scene:
+    radius: float = 300.0
+    centre_east: float = 150.0
+    speed: float = 5.0
+    phase: float = 0.0
+
+
+def drift_offsets(n: int, seed: int, phi: float = 0.9, sigma: float = 0.3) -> np.ndarray:
+    """AR(1) bearing offsets [deg], stationary σ ``sigma``."""
+    rng = np.random.default_rng(seed)
+    e = rng.normal(0.0, sigma * np.sqrt(1.0 - phi * phi), n)
+    x = np.empty(n)
+    x[0] = rng.normal(0.0, sigma)
+    for k in range(1, n):
+        x[k] = phi * x[k - 1] + e[k]
+    return x
+
+
+def sample(config: RadarConfig, scans: int, seed: int, scene: Scene = Scene(), drift: bool = False) -> RadarPlotSample:
+    """One recording's plot sample; with ``drift``, every scan's plots turned about the antenna by an AR(1) offset."""
+    data = orbit_dataset(config, n=scans, seed=seed, radius=scene.radius, centre_east=scene.centre_east, speed=scene.speed,
+                         phase=scene.phase)  # fmt: skip
+    antenna = antenna_positions(data, config)
+    plots = data.plots
+    if drift:
+        off = np.radians(drift_offsets(scans, seed + 7_000_000))
+        plots = []
+        for k, p in enumerate(data.plots):
+            rel = np.asarray(p, float).reshape(-1, 2) - antenna[k]
+            c, s = np.cos(off[k]), np.sin(off[k])  # bearing atan2(east, north) grows by off[k]
+            plots.append(antenna[k] + np.column_stack([c * rel[:, 0] - s * rel[:, 1], s * rel[:, 0] + c * rel[:, 1]]))
+    return radar_plot_sample(data.time, antenna, plots, truth_of(data), TARGET, RADAR_CLUTTER_GATE_M)
+
+
+def _sample_args(args: tuple) -> RadarPlotSample:
+    return sample(*args)
+
+
+# --- calibration -------------------------------------------------------------------------------------------------
+
+
+def _coverage(reps: list[RadarPlotSample], pairs: int, opts: ScoreOptions) -> dict[str, dict[str, float]]:
+    pooled = radar_plot_terms(reps, reps, AREA_KM2, ScoreOptions(n_boot=1))
+    names = [k for k, v in pooled.items() if v.real is not None]
+    out: dict[str, dict[str, float]] = {k: {"diff": 0.0, "side": 0.0, "blocks": 0.0, "n": 0.0} for k in names}
+    for p in range(pairs):
+        terms = radar_plot_terms([reps[2 * p]], [reps[2 * p + 1]], AREA_KM2, opts)
+        for k in names:
+            t = terms[k]
+            if t.difference_ci is None:
+                continue
+            out[k]["n"] += 1
+            out[k]["diff"] += int(t.difference_ci[0] <= 0.0 <= t.difference_ci[1])
+            out[k]["side"] += int(t.real_ci[0] <= pooled[k].real <= t.real_ci[1])
+            out[k]["blocks"] += t.block
+    return {
+        k: {
+            "pooled": float(pooled[k].real),
+            "difference_covers_0": v["diff"] / v["n"],
+            "a_covers_pooled": v["side"] / v["n"],
+            "mean_block": v["blocks"] / v["n"],
+            "pairs": v["n"],
+        }  # fmt: skip
+        for k, v in out.items()
+        if v["n"]
+    }
+
+
+def calibration(pairs: int = 50, scans: int = 238, workers: int = 2) -> dict[str, Any]:
+    t0 = time.perf_counter()
+    opts = ScoreOptions(n_boot=400, seed=0)
+    seeds = range(1000, 1000 + 2 * pairs)
+    with ProcessPoolExecutor(workers) as pool:
+        plain = list(pool.map(_sample_args, [(KNOWN, scans, s) for s in seeds]))
+        drift = list(pool.map(_sample_args, [(KNOWN, scans, s, Scene(), True) for s in seeds]))
+    out: dict[str, Any] = {"pairs": pairs, "scans": scans, "n_boot": opts.n_boot}
+    for label, reps in (("plain", plain), ("drifting", drift)):
+        cov = _coverage(reps, pairs, opts)
+        out[label] = cov
+        print(f"{label}: {pairs} pairs of {scans}-scan recordings of one model; nominal 95 %")
+        print(f"{'term':<22} {'pooled':>9} {'diff covers 0':>14} {'A covers pooled':>16} {'mean block':>11} {'pairs':>6}")
+        for k, v in cov.items():
+            print(
+                f"{k:<22} {v['pooled']:>9.4g} {v['difference_covers_0']:>14.0%} {v['a_covers_pooled']:>16.0%} "
+                f"{v['mean_block']:>11.1f} {v['pairs']:>6.0f}"
+            )
+    out["seconds"] = round(time.perf_counter() - t0, 1)
+    print(json.dumps(out))
+    return out
+
+
+# --- controlled ranking and resolution ---------------------------------------------------------------------------
+
+
+def draw(index: int) -> tuple[RadarConfig, Scene]:
+    """The true model and scene of controlled recording ``index`` (generator seeded by 20000 + index)."""
+    rng = np.random.default_rng(20000 + index)
+    cfg = RadarConfig(
+        noise={
+            "range_sigma_m": float(rng.uniform(3.0, 15.0)),
+            "range_bias_m": float(rng.uniform(-3.0, 3.0)),
+            "bearing_sigma_deg": float(rng.uniform(0.3, 2.0)),
+            "bearing_bias_deg": float(rng.uniform(-2.0, 2.0)),
+        },
+        clutter={"kind": "uniform", "density_per_km2": float(rng.uniform(0.2, 2.0))},
+        detection={"snr_ref_db": 15.0, "pd_max": float(rng.uniform(0.5, 0.78))},
+        max_range_m=1000.0,
+    )
+    scene = Scene(float(rng.uniform(200.0, 400.0)), float(rng.uniform(0.0, 300.0)), float(rng.uniform(3.0, 8.0)),
+                  float(rng.uniform(0.0, 2 * np.pi)))  # fmt: skip
+    return cfg, scene
+
+
+def candidates(true: RadarConfig) -> dict[str, RadarConfig]:
+    """The true model and 10 wrong ones."""
+    n, pd = true.noise, true.detection.pd_max
+    return {
+        "true": true,
+        "bearing_bias+1": with_noise(true, bearing_bias_deg=n.bearing_bias_deg + 1.0),
+        "bearing_bias-1": with_noise(true, bearing_bias_deg=n.bearing_bias_deg - 1.0),
+        "bearing_sigma*2": with_noise(true, bearing_sigma_deg=2.0 * n.bearing_sigma_deg),
+        "bearing_sigma/2": with_noise(true, bearing_sigma_deg=0.5 * n.bearing_sigma_deg),
+        "range_sigma*2": with_noise(true, range_sigma_m=2.0 * n.range_sigma_m),
+        "range_sigma/2": with_noise(true, range_sigma_m=0.5 * n.range_sigma_m),
+        "pd-0.2": with_pd(true, pd - 0.2),
+        "pd+0.2": with_pd(true, pd + 0.2),
+        "clutter*2": with_clutter(true, 2.0),
+        "clutter/2": with_clutter(true, 0.5),
+    }
+
+
+RESOLVE = {
+    "bearing_bias+1": "bearing_bias",
+    "range_sigma*2": "range_sigma",
+    "bearing_sigma*2": "bearing_sigma",
+    "pd-0.2": "pd",
+    "pd+0.2": "pd",
+}
+"""The wrong models whose resolution is checked, and the term that speaks about each ("pd": the Pd range bin with the
+most real scans)."""
+
+
+def _disjoint(a: tuple[float, float] | None, b: tuple[float, float] | None) -> bool:
+    return a is not None and b is not None and (a[1] < b[0] or b[1] < a[0])
+
+
+def controlled_recording(index: int, scans: int = 238, n_boot: int = 200) -> dict[str, Any]:
+    """One controlled recording: the ranking by the radar sensor score and the resolution of :data:`RESOLVE`."""
+    true, scene = draw(index)
+    opts = ScoreOptions(n_boot=n_boot, seed=index)
+    base = 100_000 * (index + 1)
+    real = [sample(true, scans, base, scene)]
+    models = {
+        label: [sample(cfg, scans, base + 10 * (j + 1) + s, scene) for s in range(SYNTHETIC_SEEDS)]
+        for j, (label, cfg) in enumerate(candidates(true).items())
+    }
+    scores = {label: radar_sensor_score(real, synth, opts) for label, synth in models.items()}
+    values = {k: v.overall.value for k, v in scores.items()}
+    ranking = sorted(values, key=lambda k: values[k])
+    edges = np.array([0.0, 250.0, 500.0, 1000.0, 1500.0, 2500.0])
+    counts = np.histogram(real[0].target_range, edges)[0]
+    pd_key = f"pd_{edges[int(np.argmax(counts))]:.0f}_{edges[int(np.argmax(counts)) + 1]:.0f}m"
+    true_terms = radar_plot_terms(real, models["true"], AREA_KM2, opts)
+    resolved = {}
+    for label, term in RESOLVE.items():
+        key = pd_key if term == "pd" else term
+        wrong_terms = radar_plot_terms(real, models[label], AREA_KM2, opts)
+        st, sw = scores["true"].overall, scores[label].overall
+        resolved[label] = {
+            "term": key,
+            "term_disjoint": _disjoint(true_terms[key].synthetic_ci, wrong_terms[key].synthetic_ci),
+            "score_disjoint": st.ci_high is not None and sw.ci_low is not None and sw.ci_low > st.ci_high,
+            "lead_resolved": sensor_lead(real, models["true"], models[label], opts).resolved,
+        }
+    return {"index": index, "true_first": ranking[0] == "true", "rank_of_true": ranking.index("true") + 1,
+            "runner_up": ranking[1] if ranking[0] == "true" else ranking[0], "scores": values, "resolved": resolved,
+            "true": true.noise.model_dump() | {"pd_max": true.detection.pd_max,
+                                               "clutter": true.clutter.density_per_km2}}  # fmt: skip
+
+
+def controlled(recordings: int = 40, scans: int = 238, workers: int = 2) -> dict[str, Any]:
+    t0 = time.perf_counter()
+    with ProcessPoolExecutor(workers) as pool:
+        rows = list(pool.map(controlled_recording, range(recordings), [scans] * recordings))
+    first = sum(r["true_first"] for r in rows)
+    print(f"{recordings} recordings of {scans} scans, parameters drawn at random; 11 candidate models, {SYNTHETIC_SEEDS} seeds")
+    print(f"true model first in {first} of {recordings} ({first / recordings:.0%})")
+    for r in rows:
+        if not r["true_first"]:
+            print(f"  recording {r['index']}: true model ranked {r['rank_of_true']}, first {r['runner_up']}; true {r['true']}")
+    out: dict[str, Any] = {"recordings": recordings, "scans": scans, "true_first": first / recordings, "resolution": {}}
+    print(f"{'wrong model':<18} {'term intervals disjoint':>24} {'score intervals disjoint':>25} {'score lead resolved':>20}")
+    for label in RESOLVE:
+        kinds = ("term_disjoint", "score_disjoint", "lead_resolved")
+        share = {k: sum(r["resolved"][label][k] for r in rows) / recordings for k in kinds}
+        out["resolution"][label] = share
+        print(f"{label:<18} {share['term_disjoint']:>24.0%} {share['score_disjoint']:>25.0%} {share['lead_resolved']:>20.0%}")
+    out["rows"] = rows
+    out["seconds"] = round(time.perf_counter() - t0, 1)
+    print(json.dumps({k: v for k, v in out.items() if k != "rows"}))
+    return out
+
+
+# --- power -------------------------------------------------------------------------------------------------------
+
+POWER_TERMS = {
+    "bearing_bias": ("°", 1.0),
+    "range_bias": ("m", 1.0),
+    "bearing_sigma": ("× σ_θ", 1.0 / KNOWN.noise.bearing_sigma_deg),
+    "range_sigma": ("× σ_r", 1.0 / KNOWN.noise.range_sigma_m),
+    "pd_250_500m": ("", 1.0),
+    "clutter_per_scan": ("× rate", None),
+}
+"""The terms of the power check, their parameter unit and the factor from the term's unit to it (None: relative to the
+pooled value)."""
+
+
+def power_pair(args: tuple[int, int]) -> dict[str, float]:
+    """The bootstrap standard deviation of each term's difference for one same-model pair at ``scans`` scans."""
+    scans, p = args
+    base = 3_000_000 + 1000 * p + scans
+    real = [sample(KNOWN, scans, base)]
+    synth = [sample(KNOWN, scans, base + 1 + s) for s in range(SYNTHETIC_SEEDS)]
+    terms = radar_plot_terms(real, synth, AREA_KM2, ScoreOptions(n_boot=300, seed=p))
+    out = {}
+    for k in POWER_TERMS:
+        r = terms[k].difference_replicates
+        out[k] = float(np.nanstd(r, ddof=1)) if r is not None else float("nan")
+        out[k + "/value"] = float(terms[k].real) if terms[k].real is not None else float("nan")
+    return out
+
+
+def power(pairs: int = 20, scans: int = 238, workers: int = 2) -> dict[str, Any]:
+    t0 = time.perf_counter()
+    lengths = [scans, 2 * scans, 4 * scans]
+    mdd: dict[str, dict[int, float]] = {k: {} for k in POWER_TERMS}
+    with ProcessPoolExecutor(workers) as pool:
+        for n in lengths:
+            rows = list(pool.map(power_pair, [(n, p) for p in range(pairs)]))
+            for k, (_, f) in POWER_TERMS.items():
+                sd = float(np.nanmean([r[k] for r in rows]))
+                scale = f if f is not None else 1.0 / float(np.nanmean([r[k + "/value"] for r in rows]))
+                mdd[k][n] = Z_POWER * sd * scale
+    print(f"Minimum detectable difference (95 % two-sided, 80 % power), {pairs} same-model pairs per length; "
+          f"real 1 recording, model {SYNTHETIC_SEEDS} seeds")  # fmt: skip
+    print(f"{'term':<18} {'unit':<8} " + " ".join(f"{n:>10d}" for n in lengths) + f" {'1×/4×':>7} {'length that halves it':>22}")
+    out: dict[str, Any] = {"pairs": pairs, "lengths": lengths, "mdd": {}}
+    for k, (unit, _) in POWER_TERMS.items():
+        m = [mdd[k][n] for n in lengths]
+        slope = float(np.polyfit(np.log(lengths), np.log(m), 1)[0])  # MDD ∝ length^slope
+        halves = float(2.0 ** (-1.0 / slope)) if slope < 0 else float("inf")
+        out["mdd"][k] = {"unit": unit, **{str(n): v for n, v in zip(lengths, m)}, "exponent": slope, "halving_factor": halves}
+        print(f"{k:<18} {unit:<8} " + " ".join(f"{v:>10.3g}" for v in m) + f" {m[0] / m[2]:>7.2f} {halves:>20.1f} ×")
+    out["seconds"] = round(time.perf_counter() - t0, 1)
+    print(json.dumps(out))
+    return out
+
+
+if __name__ == "__main__":
+    what = sys.argv[1] if len(sys.argv) > 1 else "calibration"
+    fn = {"calibration": calibration, "controlled": controlled, "power": power}[what]
+    fn(*(int(a) for a in sys.argv[2:5]))
