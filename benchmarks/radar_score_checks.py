@@ -1,6 +1,6 @@
 """Issue 22's checks of the radar sensor score by simulation (docs/fidelity-score.md, *Evaluations of issue 22*).
 
-    .venv/bin/python benchmarks/radar_score_checks.py calibration [PAIRS] [SCANS] [WORKERS]
+    .venv/bin/python benchmarks/radar_score_checks.py calibration [PAIRS] [SCANS] [WORKERS] [DRIFTING_PAIRS]
     .venv/bin/python benchmarks/radar_score_checks.py controlled [RECORDINGS] [SCANS] [WORKERS]
     .venv/bin/python benchmarks/radar_score_checks.py power [PAIRS] [SCANS] [WORKERS]
 
@@ -22,22 +22,13 @@ import json
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from seatwin.evaluation.plot_terms import (
-    RadarPlotSample,
-    radar_plot_sample,
-    radar_plot_terms,
-    radar_sensor_score,
-    sensor_lead,
-)
+from seatwin.evaluation.plot_terms import RadarPlotSample, radar_plot_terms
 from seatwin.evaluation.score import ScoreOptions
-from seatwin.fidelity.joyride import TARGET, antenna_positions
-from seatwin.fidelity.method import RADAR_CLUTTER_GATE_M, truth_of
-from seatwin.fidelity.synthetic import orbit_dataset
+from seatwin.fidelity.controlled import RESOLVE, SYNTHETIC_SEEDS, Scene, controlled_recording, orbit_sample
 from seatwin.sensors.radar.config import RadarConfig
 
 KNOWN = RadarConfig(
@@ -48,62 +39,12 @@ KNOWN = RadarConfig(
 )
 """The known model of the calibration and power checks (plot_terms_calibration.py's)."""
 AREA_KM2 = float(np.pi * (KNOWN.max_range_m**2 - KNOWN.min_range_m**2) / 1e6)
-SYNTHETIC_SEEDS = 2
-"""Seeds pooled on the model side of the controlled and power checks."""
 Z_POWER = 1.959964 + 0.841621
 """z of a two-sided 95 % test plus z of 80 % power."""
 
 
-def with_noise(cfg: RadarConfig, **update: float) -> RadarConfig:
-    return cfg.model_copy(update={"noise": cfg.noise.model_copy(update=update)})
-
-
-def with_pd(cfg: RadarConfig, pd_max: float) -> RadarConfig:
-    return cfg.model_copy(update={"detection": cfg.detection.model_copy(update={"pd_max": pd_max})})
-
-
-def with_clutter(cfg: RadarConfig, factor: float) -> RadarConfig:
-    d = cfg.clutter.density_per_km2 * factor
-    return cfg.model_copy(update={"clutter": cfg.clutter.model_copy(update={"density_per_km2": d})})
-
-
-@dataclass(frozen=True)
-class Scene:
-    radius: float = 300.0
-    centre_east: float = 150.0
-    speed: float = 5.0
-    phase: float = 0.0
-
-
-def drift_offsets(n: int, seed: int, phi: float = 0.9, sigma: float = 0.3) -> np.ndarray:
-    """AR(1) bearing offsets [deg], stationary σ ``sigma``."""
-    rng = np.random.default_rng(seed)
-    e = rng.normal(0.0, sigma * np.sqrt(1.0 - phi * phi), n)
-    x = np.empty(n)
-    x[0] = rng.normal(0.0, sigma)
-    for k in range(1, n):
-        x[k] = phi * x[k - 1] + e[k]
-    return x
-
-
-def sample(config: RadarConfig, scans: int, seed: int, scene: Scene = Scene(), drift: bool = False) -> RadarPlotSample:
-    """One recording's plot sample; with ``drift``, every scan's plots turned about the antenna by an AR(1) offset."""
-    data = orbit_dataset(config, n=scans, seed=seed, radius=scene.radius, centre_east=scene.centre_east, speed=scene.speed,
-                         phase=scene.phase)  # fmt: skip
-    antenna = antenna_positions(data, config)
-    plots = data.plots
-    if drift:
-        off = np.radians(drift_offsets(scans, seed + 7_000_000))
-        plots = []
-        for k, p in enumerate(data.plots):
-            rel = np.asarray(p, float).reshape(-1, 2) - antenna[k]
-            c, s = np.cos(off[k]), np.sin(off[k])  # bearing atan2(east, north) grows by off[k]
-            plots.append(antenna[k] + np.column_stack([c * rel[:, 0] - s * rel[:, 1], s * rel[:, 0] + c * rel[:, 1]]))
-    return radar_plot_sample(data.time, antenna, plots, truth_of(data), TARGET, RADAR_CLUTTER_GATE_M)
-
-
 def _sample_args(args: tuple) -> RadarPlotSample:
-    return sample(*args)
+    return orbit_sample(*args)
 
 
 # --- calibration -------------------------------------------------------------------------------------------------
@@ -136,18 +77,21 @@ def _coverage(reps: list[RadarPlotSample], pairs: int, opts: ScoreOptions) -> di
     }
 
 
-def calibration(pairs: int = 50, scans: int = 238, workers: int = 2) -> dict[str, Any]:
+def calibration(pairs: int = 50, scans: int = 238, workers: int = 2, drift_pairs: int | None = None) -> dict[str, Any]:
     t0 = time.perf_counter()
     opts = ScoreOptions(n_boot=400, seed=0)
     seeds = range(1000, 1000 + 2 * pairs)
+    n_drift = pairs if drift_pairs is None else drift_pairs
     with ProcessPoolExecutor(workers) as pool:
         plain = list(pool.map(_sample_args, [(KNOWN, scans, s) for s in seeds]))
-        drift = list(pool.map(_sample_args, [(KNOWN, scans, s, Scene(), True) for s in seeds]))
-    out: dict[str, Any] = {"pairs": pairs, "scans": scans, "n_boot": opts.n_boot}
-    for label, reps in (("plain", plain), ("drifting", drift)):
-        cov = _coverage(reps, pairs, opts)
+        drift = list(pool.map(_sample_args, [(KNOWN, scans, s, Scene(), True) for s in seeds[: 2 * n_drift]]))
+    out: dict[str, Any] = {"pairs": pairs, "drift_pairs": n_drift, "scans": scans, "n_boot": opts.n_boot}
+    for label, reps, n_pairs in (("plain", plain, pairs), ("drifting", drift, n_drift)):
+        if not n_pairs:
+            continue
+        cov = _coverage(reps, n_pairs, opts)
         out[label] = cov
-        print(f"{label}: {pairs} pairs of {scans}-scan recordings of one model; nominal 95 %")
+        print(f"{label}: {n_pairs} pairs of {scans}-scan recordings of one model; nominal 95 %")
         print(f"{'term':<22} {'pooled':>9} {'diff covers 0':>14} {'A covers pooled':>16} {'mean block':>11} {'pairs':>6}")
         for k, v in cov.items():
             print(
@@ -160,92 +104,6 @@ def calibration(pairs: int = 50, scans: int = 238, workers: int = 2) -> dict[str
 
 
 # --- controlled ranking and resolution ---------------------------------------------------------------------------
-
-
-def draw(index: int) -> tuple[RadarConfig, Scene]:
-    """The true model and scene of controlled recording ``index`` (generator seeded by 20000 + index)."""
-    rng = np.random.default_rng(20000 + index)
-    cfg = RadarConfig(
-        noise={
-            "range_sigma_m": float(rng.uniform(3.0, 15.0)),
-            "range_bias_m": float(rng.uniform(-3.0, 3.0)),
-            "bearing_sigma_deg": float(rng.uniform(0.3, 2.0)),
-            "bearing_bias_deg": float(rng.uniform(-2.0, 2.0)),
-        },
-        clutter={"kind": "uniform", "density_per_km2": float(rng.uniform(0.2, 2.0))},
-        detection={"snr_ref_db": 15.0, "pd_max": float(rng.uniform(0.5, 0.78))},
-        max_range_m=1000.0,
-    )
-    scene = Scene(float(rng.uniform(200.0, 400.0)), float(rng.uniform(0.0, 300.0)), float(rng.uniform(3.0, 8.0)),
-                  float(rng.uniform(0.0, 2 * np.pi)))  # fmt: skip
-    return cfg, scene
-
-
-def candidates(true: RadarConfig) -> dict[str, RadarConfig]:
-    """The true model and 10 wrong ones."""
-    n, pd = true.noise, true.detection.pd_max
-    return {
-        "true": true,
-        "bearing_bias+1": with_noise(true, bearing_bias_deg=n.bearing_bias_deg + 1.0),
-        "bearing_bias-1": with_noise(true, bearing_bias_deg=n.bearing_bias_deg - 1.0),
-        "bearing_sigma*2": with_noise(true, bearing_sigma_deg=2.0 * n.bearing_sigma_deg),
-        "bearing_sigma/2": with_noise(true, bearing_sigma_deg=0.5 * n.bearing_sigma_deg),
-        "range_sigma*2": with_noise(true, range_sigma_m=2.0 * n.range_sigma_m),
-        "range_sigma/2": with_noise(true, range_sigma_m=0.5 * n.range_sigma_m),
-        "pd-0.2": with_pd(true, pd - 0.2),
-        "pd+0.2": with_pd(true, pd + 0.2),
-        "clutter*2": with_clutter(true, 2.0),
-        "clutter/2": with_clutter(true, 0.5),
-    }
-
-
-RESOLVE = {
-    "bearing_bias+1": "bearing_bias",
-    "range_sigma*2": "range_sigma",
-    "bearing_sigma*2": "bearing_sigma",
-    "pd-0.2": "pd",
-    "pd+0.2": "pd",
-}
-"""The wrong models whose resolution is checked, and the term that speaks about each ("pd": the Pd range bin with the
-most real scans)."""
-
-
-def _disjoint(a: tuple[float, float] | None, b: tuple[float, float] | None) -> bool:
-    return a is not None and b is not None and (a[1] < b[0] or b[1] < a[0])
-
-
-def controlled_recording(index: int, scans: int = 238, n_boot: int = 200) -> dict[str, Any]:
-    """One controlled recording: the ranking by the radar sensor score and the resolution of :data:`RESOLVE`."""
-    true, scene = draw(index)
-    opts = ScoreOptions(n_boot=n_boot, seed=index)
-    base = 100_000 * (index + 1)
-    real = [sample(true, scans, base, scene)]
-    models = {
-        label: [sample(cfg, scans, base + 10 * (j + 1) + s, scene) for s in range(SYNTHETIC_SEEDS)]
-        for j, (label, cfg) in enumerate(candidates(true).items())
-    }
-    scores = {label: radar_sensor_score(real, synth, opts) for label, synth in models.items()}
-    values = {k: v.overall.value for k, v in scores.items()}
-    ranking = sorted(values, key=lambda k: values[k])
-    edges = np.array([0.0, 250.0, 500.0, 1000.0, 1500.0, 2500.0])
-    counts = np.histogram(real[0].target_range, edges)[0]
-    pd_key = f"pd_{edges[int(np.argmax(counts))]:.0f}_{edges[int(np.argmax(counts)) + 1]:.0f}m"
-    true_terms = radar_plot_terms(real, models["true"], AREA_KM2, opts)
-    resolved = {}
-    for label, term in RESOLVE.items():
-        key = pd_key if term == "pd" else term
-        wrong_terms = radar_plot_terms(real, models[label], AREA_KM2, opts)
-        st, sw = scores["true"].overall, scores[label].overall
-        resolved[label] = {
-            "term": key,
-            "term_disjoint": _disjoint(true_terms[key].synthetic_ci, wrong_terms[key].synthetic_ci),
-            "score_disjoint": st.ci_high is not None and sw.ci_low is not None and sw.ci_low > st.ci_high,
-            "lead_resolved": sensor_lead(real, models["true"], models[label], opts).resolved,
-        }
-    return {"index": index, "true_first": ranking[0] == "true", "rank_of_true": ranking.index("true") + 1,
-            "runner_up": ranking[1] if ranking[0] == "true" else ranking[0], "scores": values, "resolved": resolved,
-            "true": true.noise.model_dump() | {"pd_max": true.detection.pd_max,
-                                               "clutter": true.clutter.density_per_km2}}  # fmt: skip
 
 
 def controlled(recordings: int = 40, scans: int = 238, workers: int = 2) -> dict[str, Any]:
@@ -289,8 +147,8 @@ def power_pair(args: tuple[int, int]) -> dict[str, float]:
     """The bootstrap standard deviation of each term's difference for one same-model pair at ``scans`` scans."""
     scans, p = args
     base = 3_000_000 + 1000 * p + scans
-    real = [sample(KNOWN, scans, base)]
-    synth = [sample(KNOWN, scans, base + 1 + s) for s in range(SYNTHETIC_SEEDS)]
+    real = [orbit_sample(KNOWN, scans, base)]
+    synth = [orbit_sample(KNOWN, scans, base + 1 + s) for s in range(SYNTHETIC_SEEDS)]
     terms = radar_plot_terms(real, synth, AREA_KM2, ScoreOptions(n_boot=300, seed=p))
     out = {}
     for k in POWER_TERMS:
@@ -329,4 +187,4 @@ def power(pairs: int = 20, scans: int = 238, workers: int = 2) -> dict[str, Any]
 if __name__ == "__main__":
     what = sys.argv[1] if len(sys.argv) > 1 else "calibration"
     fn = {"calibration": calibration, "controlled": controlled, "power": power}[what]
-    fn(*(int(a) for a in sys.argv[2:5]))
+    fn(*(int(a) for a in sys.argv[2:6]))

@@ -53,9 +53,7 @@ def orbit_dataset(
     own = np.column_stack([0.5 * s, np.full(n, 0.5), np.zeros(n), np.zeros(n)])
     w = speed / radius
     a = w * s + phase
-    tgt = np.column_stack(
-        [radius * np.sin(a), radius * w * np.cos(a), centre_east + radius * np.cos(a), -radius * w * np.sin(a)]
-    )
+    tgt = np.column_stack([radius * np.sin(a), radius * w * np.cos(a), centre_east + radius * np.cos(a), -radius * w * np.sin(a)])
     return simulated(JoyrideData(t, [np.empty((0, 2))] * n, tgt, own, "<orbit>"), radar, seed)
 
 
