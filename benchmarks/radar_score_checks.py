@@ -1,7 +1,7 @@
 """Issue 22's checks of the radar sensor score by simulation (docs/fidelity-score.md, *Evaluations of issue 22*).
 
-    .venv/bin/python benchmarks/radar_score_checks.py calibration [PAIRS] [SCANS] [WORKERS] [DRIFTING_PAIRS]
-    .venv/bin/python benchmarks/radar_score_checks.py controlled [RECORDINGS] [SCANS] [WORKERS]
+    .venv/bin/python benchmarks/radar_score_checks.py calibration [PAIRS] [SCANS] [WORKERS] [DRIFTING_PAIRS] [BUDGET_S.]
+    .venv/bin/python benchmarks/radar_score_checks.py controlled [RECORDINGS] [SCANS] [WORKERS] [BUDGET_S.]
     .venv/bin/python benchmarks/radar_score_checks.py power [PAIRS] [SCANS] [WORKERS]
 
 * ``calibration`` (default 50 pairs of 238 scans): the coverage of every signed plot-level term's 95 % interval
@@ -77,14 +77,43 @@ def _coverage(reps: list[RadarPlotSample], pairs: int, opts: ScoreOptions) -> di
     }
 
 
-def calibration(pairs: int = 50, scans: int = 238, workers: int = 2, drift_pairs: int | None = None) -> dict[str, Any]:
+def _collect(pool: ProcessPoolExecutor, fn: Any, jobs: list, budget_s: float, t0: float) -> list:
+    """``fn`` over ``jobs`` in order until ``budget_s`` seconds have passed since ``t0`` (the rest is dropped)."""
+    futures = [pool.submit(fn, j) for j in jobs]
+    out = []
+    for f in futures:
+        left = budget_s - (time.perf_counter() - t0)
+        if left <= 0:
+            break
+        try:
+            out.append(f.result(timeout=left))
+        except TimeoutError:
+            break
+    _stop(pool)
+    return out
+
+
+def _stop(pool: ProcessPoolExecutor) -> None:
+    """Drop the pool's pending jobs and end its workers now (a budget ran out: nothing more is waited for)."""
+    procs = list((getattr(pool, "_processes", None) or {}).values())
+    for proc in procs:
+        proc.terminate()
+    pool.shutdown(wait=False, cancel_futures=True)
+
+
+def calibration(
+    pairs: int = 50, scans: int = 238, workers: int = 2, drift_pairs: int | None = None, budget_s: float = 1e9
+) -> dict[str, Any]:
+    """The coverage check; with ``budget_s``, only the recordings simulated within it (plain first) are used."""
     t0 = time.perf_counter()
     opts = ScoreOptions(n_boot=400, seed=0)
     seeds = range(1000, 1000 + 2 * pairs)
     n_drift = pairs if drift_pairs is None else drift_pairs
+    jobs = [(KNOWN, scans, s) for s in seeds] + [(KNOWN, scans, s, Scene(), True) for s in seeds[: 2 * n_drift]]
     with ProcessPoolExecutor(workers) as pool:
-        plain = list(pool.map(_sample_args, [(KNOWN, scans, s) for s in seeds]))
-        drift = list(pool.map(_sample_args, [(KNOWN, scans, s, Scene(), True) for s in seeds[: 2 * n_drift]]))
+        got = _collect(pool, _sample_args, jobs, budget_s, t0)
+    plain, drift = got[: 2 * pairs], got[2 * pairs :]
+    pairs, n_drift = len(plain) // 2, len(drift) // 2
     out: dict[str, Any] = {"pairs": pairs, "drift_pairs": n_drift, "scans": scans, "n_boot": opts.n_boot}
     for label, reps, n_pairs in (("plain", plain, pairs), ("drifting", drift, n_drift)):
         if not n_pairs:
@@ -106,10 +135,26 @@ def calibration(pairs: int = 50, scans: int = 238, workers: int = 2, drift_pairs
 # --- controlled ranking and resolution ---------------------------------------------------------------------------
 
 
-def controlled(recordings: int = 40, scans: int = 238, workers: int = 2) -> dict[str, Any]:
+def controlled(recordings: int = 40, scans: int = 238, workers: int = 2, budget_s: float = 1e9) -> dict[str, Any]:
+    """The controlled check; with ``budget_s``, only the recordings done within it (in index order) count."""
     t0 = time.perf_counter()
+    rows = []
     with ProcessPoolExecutor(workers) as pool:
-        rows = list(pool.map(controlled_recording, range(recordings), [scans] * recordings))
+        futures = [pool.submit(controlled_recording, i, scans) for i in range(recordings)]
+        for f in futures:
+            left = budget_s - (time.perf_counter() - t0)
+            if left <= 0:
+                break
+            try:
+                rows.append(f.result(timeout=left))
+            except TimeoutError:
+                break
+            print(json.dumps({"row": rows[-1]}), flush=True)
+        _stop(pool)
+    recordings = len(rows)
+    if not recordings:
+        print("no recording finished within the budget")
+        return {"recordings": 0}
     first = sum(r["true_first"] for r in rows)
     print(f"{recordings} recordings of {scans} scans, parameters drawn at random; 11 candidate models, {SYNTHETIC_SEEDS} seeds")
     print(f"true model first in {first} of {recordings} ({first / recordings:.0%})")
@@ -187,4 +232,4 @@ def power(pairs: int = 20, scans: int = 238, workers: int = 2) -> dict[str, Any]
 if __name__ == "__main__":
     what = sys.argv[1] if len(sys.argv) > 1 else "calibration"
     fn = {"calibration": calibration, "controlled": controlled, "power": power}[what]
-    fn(*(int(a) for a in sys.argv[2:6]))
+    fn(*(float(a) if "." in a else int(a) for a in sys.argv[2:7]))
