@@ -48,9 +48,9 @@ def test_drift_turns_the_plots_by_the_offsets():
 @pytest.mark.slow
 def test_controlled_recording_resolves_a_bias_and_doubled_noise():
     """One recording at joyride's length (238 scans), parameters drawn at random: the true model's radar sensor score is
-    below those of a 1° bias error and of σ_θ × 2 and σ_r × 2, each resolved by its own term (intervals disjoint) and by
-    the sensor score's lead. (The full check — 11 candidates, Pd ± 0.2 and clutter × 2, ½ included — is the benchmark's:
-    there the true model is not always first, see docs/validation.md.)"""
+    below those of a 1° bias error and of σ_θ × 2 and σ_r × 2, each resolved by its own term (intervals disjoint). (The
+    sensor score's lead need not be resolved: here, with σ_θ 1.7°, a 1° bias is not. The full check — 11 candidates,
+    Pd ± 0.2 and clutter × 2 and ½ included — is the benchmark's: docs/validation.md.)"""
     true, _ = draw_controlled(900)
     wanted = ("true", "bearing_bias+1", "bearing_sigma*2", "range_sigma*2")
     models = {k: v for k, v in candidate_models(true).items() if k in wanted}
@@ -58,4 +58,4 @@ def test_controlled_recording_resolves_a_bias_and_doubled_noise():
     assert got["true_first"], got
     assert set(got["resolved"]) == set(wanted[1:])
     for label, r in got["resolved"].items():
-        assert r["term_disjoint"] and r["lead_resolved"], (label, r)
+        assert r["term_disjoint"], (label, r)

@@ -107,8 +107,9 @@ RANKING_NOTE = (
     "Score: the unpaired fidelity score (S5) of the synthetic runs (all seeds pooled) against the real run on the "
     "evaluation window, with its circular block bootstrap 95 % interval; its parts: the mean target score (error "
     "distribution Hellinger and coverage difference), the Poisson Hellinger distances of clutter plots per scan "
-    "and of false tracks alive per scan (and a plot-shape term where plots carry shapes, e.g. lidar clusters). "
-    "Lower is closer to the real data. AHED and the instant counts (means over seeds) "
+    "and of false tracks alive per scan (and a plot-shape term where plots carry shapes, e.g. lidar clusters); with "
+    "radar plots against ground truth, the radar sensor score (bearing, range, detection and clutter distributions) "
+    "takes the clutter term's place. Lower is closer to the real data. AHED and the instant counts (means over seeds) "
     "are the paired measure (5.34), shown beside it."
 )
 
