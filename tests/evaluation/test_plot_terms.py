@@ -2,12 +2,25 @@
 
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 import pytest
 
 from seatwin.evaluation import TruthSet, TruthTrack
 from seatwin.evaluation.bootstrap import block_length, runs_block_length
-from seatwin.evaluation.plot_terms import RadarPlotSample, radar_plot_sample, radar_plot_terms, signed_term, wrap_deg
+from seatwin.evaluation.plot_terms import (
+    RADAR_SENSOR_WEIGHTS,
+    RadarPlotSample,
+    clutter_in_annuli,
+    gaussian_hellinger_1d,
+    radar_plot_sample,
+    radar_plot_terms,
+    radar_sensor_score,
+    sensor_lead,
+    signed_term,
+    wrap_deg,
+)
 from seatwin.evaluation.score import ScoreOptions
 
 
@@ -24,18 +37,39 @@ def test_block_length_from_the_autocorrelation():
     # A square wave of half-period 5 (n = 200): autocorrelation 1 − 2k/5 at lags k ≤ 5 (0.6, 0.2, −0.2 …);
     # the first below 2/√200 = 0.141 is lag 3.
     x = np.tile(np.repeat([1.0, 0.0], 5), 20)
-    assert block_length(x) == 3
-    assert block_length(np.tile([1.0, -1.0], 50)) == 1  # anticorrelated at lag 1
-    assert block_length(np.ones(50)) == 1 and block_length([1.0, 2.0]) == 1
+    acf = partial(block_length, rule="acf")
+    assert acf(x) == 3
+    assert acf(np.tile([1.0, -1.0], 50)) == 1  # anticorrelated at lag 1
+    assert acf(np.ones(50)) == 1 and acf([1.0, 2.0]) == 1
     ar = np.zeros(3000)
     e = np.random.default_rng(0).normal(size=3000)
     for k in range(1, 3000):
         ar[k] = 0.95 * ar[k - 1] + e[k]
     # AR(1), φ = 0.95: ρ(k) = 0.95^k < 2/√3000 = 0.037 from k ≈ 65 (sampling noise moves it a little).
-    assert 40 <= block_length(ar) <= 90
-    assert block_length(ar, cap=20) == 20
-    assert runs_block_length([x, np.tile([1.0, -1.0], 50)]) == 3
-    assert block_length(np.r_[x, np.nan, np.nan]) == 3  # NaN (scans without a value) left out
+    assert 40 <= acf(ar) <= 90
+    assert acf(ar, cap=20) == 20
+    assert runs_block_length([x, np.tile([1.0, -1.0], 50)], rule="acf") == 3
+    assert acf(np.r_[x, np.nan, np.nan]) == 3  # NaN (scans without a value) left out
+    with pytest.raises(ValueError, match="unknown block-length rule"):
+        block_length(x, rule="guess")
+
+
+def _ar1(phi: float, n: int, seed: int) -> np.ndarray:
+    e = np.random.default_rng(seed).normal(size=n)
+    x = np.zeros(n)
+    for k in range(1, n):
+        x[k] = phi * x[k - 1] + e[k]
+    return x
+
+
+def test_politis_white_block_length_is_the_default():
+    # AR(1), φ = 0.9, n = 3000: G = 2φ/(1−φ)² γ₀ = 180 γ₀, spectral sum (1+φ)/(1−φ) γ₀ = 19 γ₀, D = 4/3 · 19² γ₀²,
+    # b = (2 G²/D)^(1/3) n^(1/3) = 5.12 × 14.42 = 73.9.
+    assert 55 <= block_length(_ar1(0.9, 3000, 0)) <= 95
+    assert block_length(_ar1(0.0, 3000, 1)) <= 3  # independent: (almost) no blocks
+    assert block_length(_ar1(0.5, 200, 2)) < block_length(_ar1(0.9, 200, 2))
+    assert block_length(_ar1(0.95, 100, 3)) <= 30  # ⌈min(3√n, n/3)⌉ = 30 (and n // 3 = 33)
+    assert block_length(np.ones(50)) == 1 and block_length([1.0, 2.0]) == 1
 
 
 def test_radar_plot_sample_hand_computed():
@@ -96,7 +130,7 @@ def test_radar_plot_terms_hand_computed():
     assert terms["bearing_bias"].difference == pytest.approx(2.0) and terms["bearing_bias"].resolved
     assert terms["range_bias"].real == pytest.approx(4.0) and terms["range_bias"].synthetic == pytest.approx(4.0)
     assert terms["range_sigma"].real == pytest.approx(0.0) and terms["range_sigma"].synthetic == pytest.approx(
-        1.4826 * 2.0  # robust σ: errors 2 and 6, median 4, every deviation 2
+        np.sqrt(40 * 4.0 / 39) / 0.98658  # errors 2 and 6 (all within 3 robust σ = 3 × 1.4826 × 2 of 4): clipped std
     )
     assert (terms["pd_0_250m"].real, terms["pd_0_250m"].synthetic) == pytest.approx((0.5, 1.0))
     assert terms["pd_500_1000m"].difference == pytest.approx(0.5)
@@ -121,7 +155,7 @@ def test_score_block_none_chooses_it_from_the_data():
 
 
 def test_lead_of_the_closer_model():
-    from seatwin.evaluation.plot_terms import lead, radar_term_specs
+    from seatwin.evaluation.plot_terms import clipped_mean, lead, radar_term_specs
 
     n = 60
     rng = np.random.default_rng(2)
@@ -131,7 +165,7 @@ def test_lead_of_the_closer_model():
 
     real, near, far = [sample(-1.8)], [sample(-1.6)], [sample(0.0)]
     spec = radar_term_specs(1.0)["bearing_bias"]
-    mean = [float(np.mean(s[0].bearing_error)) for s in (real, near, far)]
+    mean = [clipped_mean(s[0].bearing_error) for s in (real, near, far)]
     got = lead(spec, real, near, far, ScoreOptions(n_boot=300))
     assert got.value == pytest.approx(abs(mean[2] - mean[0]) - abs(mean[1] - mean[0]))
     assert got.value > 1.0 and got.resolved and got.ci[0] <= got.value <= got.ci[1]
@@ -140,3 +174,92 @@ def test_lead_of_the_closer_model():
     assert (
         lead(spec, real, near, [sample(-1.8)], ScoreOptions(n_boot=300)).resolved is False
     )  # B (the true bias) is the closer one: no lead
+
+
+def test_aspect_and_clutter_ranges_hand_computed():
+    # Target 1 km north of the antenna heading north (stern towards the radar), then south (bow-on), then east (beam).
+    t = np.arange(3, dtype=float)
+    tr = TruthTrack(
+        "target", t, np.full(3, 1000.0), np.full(3, 0.0), np.array([5.0, -5.0, 0.0]), np.array([0.0, 0.0, 5.0]), "<t>"
+    )
+    truth = TruthSet({"target": tr}, "<test>")
+    plots = [np.array([[0.0, 300.0], [0.0, -700.0]]), np.array([[1000.0, 0.0]]), np.empty((0, 2))]
+    s = radar_plot_sample(t, np.zeros((3, 2)), plots, truth, "target", 60.0)
+    np.testing.assert_allclose(s.aspect, [180.0, 0.0, 90.0], atol=1e-6)
+    assert [r.tolist() for r in s.clutter_range] == [pytest.approx([300.0, 700.0]), [], []]
+    np.testing.assert_array_equal(clutter_in_annuli(s), [[0, 1, 1, 0, 0], [0] * 5, [0] * 5])  # 250–500, 500–1000 m
+    slow = TruthSet({"target": _still("target", 1000.0, 0.0, 3)}, "<test>")
+    assert np.isnan(radar_plot_sample(t, np.zeros((3, 2)), plots, slow, "target", 60.0).aspect).all()  # no heading
+
+
+def test_gaussian_hellinger_1d_against_the_formula():
+    assert gaussian_hellinger_1d(0.0, 1.0, 0.0, 1.0) == pytest.approx(0.0)
+    # Equal σ: H² = 1 − exp(−Δ²/(8σ²)).
+    assert gaussian_hellinger_1d(1.0, 1.0, -1.0, 1.0) ** 2 == pytest.approx(1.0 - np.exp(-0.5))
+    # Equal means, σ 1 and 2: H² = 1 − √(4/5).
+    assert gaussian_hellinger_1d(0.0, 1.0, 0.0, 2.0) ** 2 == pytest.approx(1.0 - np.sqrt(0.8))
+
+
+def _sample(n: int, rng: np.random.Generator, bias: float = 0.0, sigma: float = 1.0, pd: float = 0.8, clutter: float = 2.0):
+    det = rng.random(n) < pd
+    b = np.where(det, rng.normal(bias, sigma, n), np.nan)
+    r = np.where(det, rng.normal(0.0, 5.0, n), np.nan)
+    c = rng.poisson(clutter, n)
+    ranges = tuple(rng.uniform(0.0, 1000.0, k) for k in c)
+    return RadarPlotSample(np.full(n, 300.0), r, b, c.astype(np.int64), np.full(n, 90.0), ranges)
+
+
+def test_radar_sensor_score_parts_hand_computed():
+    n = 40
+    half = np.arange(n) < 20
+    real = RadarPlotSample(
+        np.full(n, 300.0),
+        np.where(half, 0.0, np.nan),
+        np.where(half, np.tile([-1.0, 1.0], 20), np.nan),  # mean 0, clipped σ √(20/19)
+        np.full(n, 4, dtype=np.int64),
+        np.full(n, 90.0),
+        tuple(np.array([100.0, 100.0, 600.0, 600.0]) for _ in range(n)),
+    )
+    synth = RadarPlotSample(
+        np.full(n, 300.0),
+        np.zeros(n),
+        np.tile([-1.0, 1.0], 20) + 1.0,
+        np.full(n, 1, dtype=np.int64),
+        np.full(n, 90.0),
+        tuple(np.array([600.0]) for _ in range(n)),
+    )
+    sc = radar_sensor_score([real], [synth], ScoreOptions(n_boot=50))
+    s = np.sqrt(20.0 / 19.0) / 0.98658
+    s_syn = np.sqrt(40.0 / 39.0) / 0.98658
+    assert sc.parts["bearing"].value == pytest.approx(gaussian_hellinger_1d(0.0, s, 1.0, s_syn))
+    assert sc.parts["range"].value == pytest.approx(0.0, abs=1e-9)  # both exactly 0 (σ floors equal)
+    # Detection: one cell (250–500 m, beam), Pd 0.5 vs 1: H² = 1 − √0.5.
+    assert sc.parts["detection"].value == pytest.approx(np.sqrt(1.0 - np.sqrt(0.5)))
+    # Clutter per scan per annulus: real 2 (0–250 m), 2 (500–1000 m); synthetic 0 and 1.
+    assert sc.parts["clutter"].value == pytest.approx(np.sqrt(1.0 - np.exp(-0.5 * (2.0 + (np.sqrt(2.0) - 1.0) ** 2))))
+    expected = 1.0 - np.prod([1.0 - v.value for v in sc.parts.values()])
+    assert sc.overall.value == pytest.approx(expected) and sc.weights == RADAR_SENSOR_WEIGHTS
+    assert sc.to_dict()["parts"]["clutter"]["counts"] == {"weight": 1.0}
+    few = radar_sensor_score([real], [synth], ScoreOptions(n_boot=20, n_min=30))
+    assert few.parts["bearing"].value is None and "bearing: fewer than 30 target plots" in few.overall.reason
+
+
+def test_radar_sensor_score_ranks_and_leads():
+    rng = np.random.default_rng(5)
+    o = ScoreOptions(n_boot=100, seed=1)
+    real = [_sample(300, rng, bias=-1.0)]
+    same = [_sample(300, rng, bias=-1.0)]
+    wrong = {
+        "bias": [_sample(300, rng, bias=0.0)],
+        "sigma": [_sample(300, rng, bias=-1.0, sigma=2.0)],
+        "pd": [_sample(300, rng, bias=-1.0, pd=0.5)],
+        "clutter": [_sample(300, rng, bias=-1.0, clutter=6.0)],
+    }
+    s_true = radar_sensor_score(real, same, o)
+    for k, w in wrong.items():
+        s_w = radar_sensor_score(real, w, o)
+        assert s_w.overall.value > s_true.overall.value, k
+        got = sensor_lead(real, same, w, o)
+        assert got.resolved and got.ci[0] <= got.value <= got.ci[1], k
+    assert not sensor_lead(real, wrong["bias"], same, o).resolved
+    assert radar_sensor_score(real, same, o).to_dict() == s_true.to_dict()  # reproducible

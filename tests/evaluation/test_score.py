@@ -132,6 +132,25 @@ def test_overall_combines_parts_and_names_what_is_left_out():
     assert refused.value is None and "neither dataset" in refused.reason
 
 
+def test_with_sensor_score_replaces_the_terms_it_measures_again():
+    from seatwin.evaluation.score import FidelityScore, with_sensor_score
+
+    rng = np.random.default_rng(5)
+    t = target_score([_errors(rng, 100, 1.0)], [_errors(rng, 100, 1.2)])
+    clutter = rate_score([rng.poisson(2.0, 50)], [rng.poisson(4.0, 50)])
+    false = rate_score([rng.poisson(0.5, 50)], [rng.poisson(1.0, 50)])
+    sensor = rate_score([rng.poisson(1.0, 50)], [rng.poisson(3.0, 50)])  # any ScoreValue with replicates
+    plots = {"clutter": clutter, "false_tracks": false}
+    base = FidelityScore(overall_score({"a": t}, plots), {"a": t}, plots)
+    got = with_sensor_score(base, "radar_sensor", sensor, ("clutter",))
+    assert got.overall.value == pytest.approx(combine(t.value, false.value, sensor.value))  # clutter not counted twice
+    assert got.overall.ci_low <= got.overall.value <= got.overall.ci_high
+    d = got.to_dict()
+    assert d["radar_sensor"]["value"] == sensor.value and d["clutter"]["value"] == clutter.value
+    assert d["not_combined"] == {"clutter": "measured inside radar_sensor"}
+    assert "not_combined" not in base.to_dict()
+
+
 def test_bootstrap_helpers():
     rng = np.random.default_rng(0)
     idx = circular_block_indices(30, 10, rng)

@@ -122,6 +122,11 @@ def test_fidelity_real_joyride_ranks_the_fitted_model_first(shared_data, tmp_pat
     no_bias = j["models"]["no_bias"]["plot_terms"]["bearing_bias"]
     assert no_bias["resolved"] and no_bias["difference_ci"][0] > 0.0 and "too far clockwise" in no_bias["sentence"]
     assert j["plot_term_leads"]["no_bias"]["bearing_bias"]["value"] > 0.0  # closer, though not resolved (docstring)
+    # The radar sensor score (in S5 in place of the clutter term): the fitted model's lead over the grossly wrong
+    # models is resolved; over no_bias it is not (0.047 [−0.011, 0.092] with the rule off, docs/validation.md).
+    assert "radar_sensor" in j["models"]["fitted"]["agents"]["jipda"]["score_parts"]
+    for worse in ("default", "too_clean", "wide_noise"):
+        assert j["plot_term_leads"][worse]["radar_sensor_score"]["resolved"], (worse, j["plot_term_leads"][worse])
     assert "untruthed1" in j["assumptions"]["untruthed_vessels"]  # the boat without GNSS: in the replica, don't-care in the score
     md = (out / "fidelity.md").read_text()
     assert "## Radar plot-level terms" in md and "bearing bias" in md

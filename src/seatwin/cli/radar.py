@@ -45,6 +45,12 @@ def register(app: typer.Typer) -> None:
         clutter: str = typer.Option("uniform", "--clutter", help="Clutter form: uniform or map (world-fixed density map)."),
         first_half: bool = typer.Option(False, "--first-half", help="Fit on the first half of the scans only."),
         seed: int = typer.Option(0, "--seed", help="Seed of the bootstrap."),
+        by_score: bool = typer.Option(
+            False,
+            "--by-score",
+            help="joyride.mat only: then match the replica's plots to the real ones in the radar sensor score's own "
+            "statistics (bias, σ, detection share, clutter per scan), by simulation; parameters with 95 % intervals.",
+        ),
         overwrite: bool = overwrite_option(),
     ) -> None:
         from seatwin.fidelity.radar_fit import fit_radar_to_recording
@@ -54,7 +60,15 @@ def register(app: typer.Typer) -> None:
         check_output_file(out, "out", inputs=[recording, truth, base], overwrite=overwrite)
 
         res, obs = fit_radar_to_recording(
-            recording, truth=truth, base=base, first_half=first_half, gate=gate, boot=boot, clutter=clutter, seed=seed
+            recording,
+            truth=truth,
+            base=base,
+            first_half=first_half,
+            gate=gate,
+            boot=boot,
+            clutter=clutter,
+            seed=seed,
+            by_score=by_score,
         )
         save_radar_config(res.config, out)
         est = res.report["estimates"]
@@ -79,6 +93,13 @@ def register(app: typer.Typer) -> None:
             typer.echo(line(key, unit))
         for note in res.report.get("notes", []):
             typer.echo(f"  note: {note}")
+        if "score_fit" in res.report:
+            sf = res.report["score_fit"]
+            typer.echo(f"fitted by the radar sensor score (its value {sf['sensor_score']['score']['value']:.3f}); written:")
+            for key, p in sf["parameters"].items():
+                ci = p["ci95"]
+                ci_txt = f" [{ci[0]:.3g}, {ci[1]:.3g}]" if ci else ""
+                typer.echo(f"  {key:<26} {p['estimate']:.4g}{ci_txt}")
 
     @group.command("simulate", help=_SIM_HELP)
     def simulate_cmd(

@@ -24,13 +24,20 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from seatwin.evaluation.bootstrap import circular_block_indices, percentile_interval, runs_block_length
-from seatwin.evaluation.score import ScoreOptions, clutter_counts
+from seatwin.evaluation.score import ScoreOptions, ScoreValue, clutter_mask, with_ci
 from seatwin.evaluation.truth import TruthSet
 from seatwin.rng import frame_rng
 
 PD_RANGE_EDGES_M = (0.0, 250.0, 500.0, 1000.0, 1500.0, 2500.0)
-"""Range bins [m] of the detection-probability terms; fixed before any result was seen (the radar's
+"""Range bins [m] of the detection-probability and clutter terms; fixed before any result was seen (the radar's
 near field, then doubling widths out to the default 2.5 km maximum range)."""
+
+ASPECT_EDGES_DEG = (0.0, 45.0, 135.0, 180.0)
+"""Aspect bins [deg] of the detection-probability terms (0 = the target's bow towards the radar): bow-on, beam,
+stern-on; fixed before any result was seen."""
+ASPECT_NAMES = ("bow", "beam", "stern")
+MIN_SPEED_FOR_ASPECT = 0.5
+"""[m/s] Below it the target's heading (from its truthed velocity) and so its aspect are undefined."""
 
 
 @dataclass(frozen=True)
@@ -45,6 +52,11 @@ class RadarPlotSample:
     """Plot bearing − true bearing [deg], wrapped to [−180, 180), positive clockwise; NaN when none."""
     clutter: NDArray[np.int64]
     """Plots farther than the gate from the target and from every don't-care vessel."""
+    aspect: NDArray[np.float64] | None = None
+    """Target aspect [deg, 0–180]: the angle between its heading and the line from it to the antenna (0 = bow-on);
+    NaN where it is too slow for a heading; None: not known."""
+    clutter_range: tuple[NDArray[np.float64], ...] | None = None
+    """Per scan, the ranges [m] from the antenna of its clutter plots; None: not known."""
 
     @property
     def detected(self) -> NDArray[np.float64]:
@@ -77,6 +89,10 @@ def radar_plot_sample(
     rel_t = tgt - a
     rng_t = np.hypot(rel_t[:, 0], rel_t[:, 1])
     brg_t = np.degrees(np.arctan2(rel_t[:, 1], rel_t[:, 0]))
+    vel = truth[target].state_at(t)[:, [1, 3]]
+    heading = np.degrees(np.arctan2(vel[:, 1], vel[:, 0]))
+    aspect = np.abs(wrap_deg(brg_t + 180.0 - heading))
+    aspect[np.hypot(vel[:, 0], vel[:, 1]) < MIN_SPEED_FOR_ASPECT] = np.nan
     for k, p in enumerate(plots):
         p = np.asarray(p, float).reshape(-1, 2)
         if not len(p) or not np.isfinite(tgt[k, 0]):
@@ -88,7 +104,13 @@ def radar_plot_sample(
             r_err[k] = np.hypot(rel[0], rel[1]) - rng_t[k]
             b_err[k] = wrap_deg(np.degrees(np.arctan2(rel[1], rel[0])) - brg_t[k])
     vessels = truth if dont_care is None else TruthSet({**truth.targets, **dont_care.targets}, truth.source)
-    return RadarPlotSample(rng_t, r_err, b_err, clutter_counts(t, plots, vessels, gate))
+    masks = clutter_mask(t, plots, vessels, gate)
+    ranges = tuple(
+        np.hypot(*(np.asarray(p, float).reshape(-1, 2)[m] - a[k]).T) if m.any() else np.empty(0)
+        for k, (p, m) in enumerate(zip(plots, masks))
+    )
+    counts = np.array([int(m.sum()) for m in masks], dtype=np.int64)
+    return RadarPlotSample(rng_t, r_err, b_err, counts, aspect, ranges)
 
 
 @dataclass
@@ -208,8 +230,56 @@ def robust_sigma(x: NDArray[np.float64]) -> float:
     return float(MAD_TO_SIGMA * np.median(np.abs(x - np.median(x))))
 
 
+CLIP_SIGMAS = 3.0
+"""Errors farther than this many robust σ (:func:`robust_sigma`) from their median are left out of
+:func:`clipped_mean` and :func:`clipped_sigma` (a clutter plot inside the gate, not noise)."""
+CLIP_SIGMA_FACTOR = 0.98658
+"""σ of a standard normal truncated to ±3 (:data:`CLIP_SIGMAS`): a clipped standard deviation divided by it is unbiased."""
+
+
+def _clipped(x: NDArray[np.float64]) -> NDArray[np.float64]:
+    s0 = robust_sigma(x)
+    if s0 <= 0.0:
+        return x
+    return x[np.abs(x - np.median(x)) <= CLIP_SIGMAS * s0]
+
+
+def clipped_mean(x: NDArray[np.float64]) -> float:
+    """Mean of the errors within :data:`CLIP_SIGMAS` robust σ of their median: the bias, robust to clutter in the gate
+    and nearly as efficient as the mean for Gaussian noise."""
+    return float(np.mean(_clipped(x)))
+
+
+def clipped_sigma(x: NDArray[np.float64]) -> float:
+    """Standard deviation (ddof 1) of the errors within :data:`CLIP_SIGMAS` robust σ of their median, divided by
+    :data:`CLIP_SIGMA_FACTOR`: robust to clutter in the gate, ~2.5 × as efficient as :func:`robust_sigma` for Gaussian noise."""
+    y = _clipped(x)
+    return float(np.std(y, ddof=1) / CLIP_SIGMA_FACTOR) if len(y) >= 2 else 0.0
+
+
 def _in_bin(sample: RadarPlotSample, *, lo: float, hi: float) -> NDArray[np.float64]:
     return np.where((sample.target_range >= lo) & (sample.target_range < hi), sample.detected, np.nan)
+
+
+def _in_aspect(sample: RadarPlotSample, *, lo: float, hi: float) -> NDArray[np.float64]:
+    if sample.aspect is None:
+        return np.full(len(sample.target_range), np.nan)
+    a = sample.aspect
+    inside = (a >= lo) & ((a < hi) | ((hi >= 180.0) & (a <= hi)))
+    return np.where(inside, sample.detected, np.nan)
+
+
+def clutter_in_annuli(sample: RadarPlotSample, edges: Sequence[float] = PD_RANGE_EDGES_M) -> NDArray[np.float64]:
+    """(n_scans, n_annuli) clutter plots per scan in each range annulus ``[edges[i], edges[i+1])`` from the antenna;
+    NaN when the sample does not know its clutter plots' ranges."""
+    if sample.clutter_range is None:
+        return np.full((len(sample.clutter), len(edges) - 1), np.nan)
+    e = np.asarray(edges, float)
+    return np.array([np.histogram(r, e)[0] for r in sample.clutter_range], dtype=float).reshape(-1, len(e) - 1)
+
+
+def _clutter_in(sample: RadarPlotSample, *, i: int, edges: tuple[float, ...]) -> NDArray[np.float64]:
+    return clutter_in_annuli(sample, edges)[:, i]
 
 
 @dataclass(frozen=True)
@@ -227,22 +297,34 @@ class TermSpec:
 
 def radar_term_specs(area_km2: float, range_edges: Sequence[float] = PD_RANGE_EDGES_M) -> dict[str, TermSpec]:
     """The radar plot-level terms: bearing and range bias (mean error), bearing and range σ (:func:`robust_sigma` of
-    the error), detection probability per range bin of ``range_edges``, clutter plots per scan and per km²
-    (``area_km2``: the area the radar covers, the same for both sides)."""
+    the error), detection probability per range bin of ``range_edges`` and per aspect bin (:data:`ASPECT_EDGES_DEG`),
+    clutter plots per scan and per km² (``area_km2``: the area the radar covers, the same for both sides) and per scan
+    in each range annulus of ``range_edges``."""
 
     def clutter(s: RadarPlotSample) -> NDArray[np.float64]:
         return s.clutter.astype(float)
 
     specs = {
-        "bearing_bias": TermSpec("bearing bias", "°", lambda s: s.bearing_error, _mean, ("far clockwise", "far anticlockwise")),
-        "range_bias": TermSpec("range bias", "m", lambda s: s.range_error, _mean, ("far", "near")),
-        "bearing_sigma": TermSpec("bearing σ", "°", lambda s: s.bearing_error, robust_sigma, ("wide", "narrow")),
-        "range_sigma": TermSpec("range σ", "m", lambda s: s.range_error, robust_sigma, ("wide", "narrow")),
+        "bearing_bias": TermSpec(
+            "bearing bias", "°", lambda s: s.bearing_error, clipped_mean, ("far clockwise", "far anticlockwise")
+        ),
+        "range_bias": TermSpec("range bias", "m", lambda s: s.range_error, clipped_mean, ("far", "near")),
+        "bearing_sigma": TermSpec("bearing σ", "°", lambda s: s.bearing_error, clipped_sigma, ("wide", "narrow")),
+        "range_sigma": TermSpec("range σ", "m", lambda s: s.range_error, clipped_sigma, ("wide", "narrow")),
     }
     for lo, hi in zip(range_edges[:-1], range_edges[1:]):
         specs[f"pd_{lo:.0f}_{hi:.0f}m"] = TermSpec(f"Pd {lo:.0f}–{hi:.0f} m", "", partial(_in_bin, lo=lo, hi=hi), _mean)
+    for name, lo, hi in zip(ASPECT_NAMES, ASPECT_EDGES_DEG[:-1], ASPECT_EDGES_DEG[1:]):
+        specs[f"pd_aspect_{name}"] = TermSpec(
+            f"Pd {name} aspect ({lo:.0f}–{hi:.0f}°)", "", partial(_in_aspect, lo=lo, hi=hi), _mean
+        )
     specs["clutter_per_scan"] = TermSpec("clutter per scan", "plots", clutter, _mean, ("dense", "sparse"))
     specs["clutter_per_km2"] = TermSpec("clutter density", "plots/km²/scan", clutter, _mean, ("dense", "sparse"), 1.0 / area_km2)
+    edges = tuple(float(x) for x in range_edges)
+    for i, (lo, hi) in enumerate(zip(edges[:-1], edges[1:])):
+        specs[f"clutter_{lo:.0f}_{hi:.0f}m"] = TermSpec(
+            f"clutter {lo:.0f}–{hi:.0f} m", "plots/scan", partial(_clutter_in, i=i, edges=edges), _mean, ("dense", "sparse")
+        )
     return specs
 
 
@@ -315,3 +397,230 @@ def lead(
             reps[b] = gap([spec.statistic(x) * spec.scale for x in boot])
     value = gap([spec.statistic(x) * spec.scale for x in pooled])
     return Lead(spec.label, spec.unit, value, percentile_interval(reps, o.level))
+
+
+# --- The radar sensor score: the plot-level terms as distances on one scale, combined with fixed weights ---
+
+RADAR_SENSOR_WEIGHTS = {"bearing": 1.0, "range": 1.0, "detection": 1.0, "clutter": 1.0}
+"""Weights of the radar sensor score's parts (docs/fidelity-score.md, *Radar sensor score*), fixed before any result:
+every part is a Hellinger distance (one scale: H² = 1 − Bhattacharyya coefficient) between the distributions of one
+independent part of the radar's output — bearing noise, range noise, the detection process, the clutter process —
+so each counts once."""
+SIGMA_FLOOR = {"bearing": 1e-3, "range": 1e-2}
+"""σ floors [deg, m] of the error Gaussians: keep a (near-)noiseless side's Gaussian proper."""
+
+
+def gaussian_hellinger_1d(m1: float, s1: float, m2: float, s2: float) -> float:
+    """Hellinger distance between N(m1, s1²) and N(m2, s2²):
+    ``H² = 1 − √(2 s1 s2 / (s1² + s2²)) exp(−(m1 − m2)² / (4 (s1² + s2²)))``."""
+    v = s1 * s1 + s2 * s2
+    bc = np.sqrt(2.0 * s1 * s2 / v) * np.exp(-((m1 - m2) ** 2) / (4.0 * v))
+    return float(np.sqrt(max(0.0, 1.0 - bc)))
+
+
+@dataclass(frozen=True)
+class _Arrays:
+    """One run's per-scan arrays the sensor score resamples (rows = scans)."""
+
+    bearing: NDArray[np.float64]
+    range: NDArray[np.float64]
+    detected: NDArray[np.float64]
+    cell: NDArray[np.int64]
+    """Detection cell (range bin × aspect bin) of the scan; −1 outside every bin."""
+    clutter: NDArray[np.float64]
+    """(n, annuli) clutter plots per scan per range annulus."""
+
+    def take(self, idx: NDArray[np.int64]) -> _Arrays:
+        return _Arrays(self.bearing[idx], self.range[idx], self.detected[idx], self.cell[idx], self.clutter[idx])
+
+
+def _arrays(s: RadarPlotSample, range_edges: Sequence[float], aspect_edges: Sequence[float]) -> _Arrays:
+    r_bin = np.digitize(s.target_range, range_edges) - 1
+    r_bin[(r_bin < 0) | (r_bin >= len(range_edges) - 1) | ~np.isfinite(s.target_range)] = -1
+    n_asp = len(aspect_edges) - 1
+    if s.aspect is None:
+        a_bin = np.zeros(len(r_bin), dtype=np.int64)
+    else:
+        a_bin = np.clip(np.digitize(s.aspect, aspect_edges) - 1, 0, n_asp - 1)
+        a_bin[~np.isfinite(s.aspect)] = -1
+    cell = np.where((r_bin >= 0) & (a_bin >= 0), r_bin * n_asp + a_bin, -1).astype(np.int64)
+    clutter = clutter_in_annuli(s, range_edges)
+    if not np.isfinite(clutter).all():  # ranges unknown: one annulus holding every clutter plot
+        clutter = s.clutter.astype(float)[:, None]
+    return _Arrays(s.bearing_error, s.range_error, s.detected, cell, clutter)
+
+
+def _cat(runs: Sequence[_Arrays]) -> _Arrays:
+    return _Arrays(*(np.concatenate([getattr(r, f) for r in runs]) for f in ("bearing", "range", "detected", "cell", "clutter")))
+
+
+def _error_part(xr: NDArray[np.float64], xs: NDArray[np.float64], floor: float, n_min: int) -> float:
+    xr, xs = xr[np.isfinite(xr)], xs[np.isfinite(xs)]
+    if min(len(xr), len(xs)) < max(2, n_min):
+        return np.nan
+    return gaussian_hellinger_1d(clipped_mean(xr), max(clipped_sigma(xr), floor), clipped_mean(xs), max(clipped_sigma(xs), floor))
+
+
+def _detection_part(r: _Arrays, s: _Arrays, cells: NDArray[np.int64]) -> float:
+    """H² = 1 − Σ_c w_c BC_c over the detection cells ``cells``: the Hellinger distance between the joint distributions
+    of (cell, detected) when both sides share the cells' weights ``w_c`` (the mean of the two sides' shares)."""
+    h2, wsum = 0.0, 0.0
+    for c in cells:
+        dr, ds = r.detected[r.cell == c], s.detected[s.cell == c]
+        if not len(dr) or not len(ds):
+            continue
+        w = 0.5 * (len(dr) / max(1, int((r.cell >= 0).sum())) + len(ds) / max(1, int((s.cell >= 0).sum())))
+        pr, ps = float(dr.mean()), float(ds.mean())
+        h2 += w * (1.0 - np.sqrt(pr * ps) - np.sqrt((1.0 - pr) * (1.0 - ps)))
+        wsum += w
+    return float(np.sqrt(max(0.0, h2 / wsum))) if wsum > 0 else np.nan
+
+
+def _clutter_part(r: _Arrays, s: _Arrays) -> float:
+    """Hellinger distance between the clutter processes as independent Poisson counts per scan per annulus:
+    ``H² = 1 − exp(−½ Σ_a (√λ_r,a − √λ_s,a)²)`` (one annulus: S4's Poisson distance)."""
+    if not len(r.clutter) or not len(s.clutter):
+        return np.nan
+    d = np.sqrt(r.clutter.mean(axis=0)) - np.sqrt(s.clutter.mean(axis=0))
+    return float(np.sqrt(-np.expm1(-0.5 * float(d @ d))))
+
+
+def _parts(r: _Arrays, s: _Arrays, cells: NDArray[np.int64], n_min: int) -> dict[str, float]:
+    return {
+        "bearing": _error_part(r.bearing, s.bearing, SIGMA_FLOOR["bearing"], n_min),
+        "range": _error_part(r.range, s.range, SIGMA_FLOOR["range"], n_min),
+        "detection": _detection_part(r, s, cells),
+        "clutter": _clutter_part(r, s),
+    }
+
+
+def weighted_combine(parts: dict[str, float], weights: dict[str, float]) -> float:
+    """``1 − Π (1 − H_i)^(w_i)`` over the finite parts (:func:`seatwin.evaluation.score.combine` with weights)."""
+    used = [(v, weights[k]) for k, v in parts.items() if np.isfinite(v)]
+    if not used:
+        return np.nan
+    return float(1.0 - np.prod([(1.0 - min(v, 1.0)) ** w for v, w in used]))
+
+
+@dataclass
+class SensorScore:
+    """The radar sensor score: the weighted combination of its parts, each a distance with its interval."""
+
+    overall: ScoreValue
+    parts: dict[str, ScoreValue]
+    weights: dict[str, float]
+    block: int
+
+    def to_dict(self) -> dict:
+        return {
+            "score": self.overall.to_dict(),
+            "parts": {k: v.to_dict() for k, v in self.parts.items()},
+            "weights": self.weights,
+            "block": self.block,
+        }
+
+
+def _detection_cells(r: _Arrays, s: _Arrays, n_min: int) -> NDArray[np.int64]:
+    """The cells with at least ``n_min`` scans on both sides (fixed from the data before resampling)."""
+    cells = np.union1d(r.cell[r.cell >= 0], s.cell[s.cell >= 0])
+    return np.array([c for c in cells if min((r.cell == c).sum(), (s.cell == c).sum()) >= n_min], dtype=np.int64)
+
+
+def _prepared(runs: Sequence[RadarPlotSample], range_edges: Sequence[float], aspect_edges: Sequence[float]) -> list[_Arrays]:
+    return [_arrays(x, range_edges, aspect_edges) for x in runs]
+
+
+def sensor_block_length(runs: Sequence[_Arrays]) -> int:
+    """The joint bootstrap's block length: the longest :func:`runs_block_length` of the series behind every part
+    (bearing and range error, detection, clutter per scan)."""
+    series = [x for r in runs for x in (r.bearing, r.range, r.detected, r.clutter.sum(axis=1))]
+    return runs_block_length(series)
+
+
+def radar_sensor_score(
+    real: Sequence[RadarPlotSample],
+    synthetic: Sequence[RadarPlotSample],
+    options: ScoreOptions | None = None,
+    weights: dict[str, float] | None = None,
+    range_edges: Sequence[float] = PD_RANGE_EDGES_M,
+    aspect_edges: Sequence[float] = ASPECT_EDGES_DEG,
+) -> SensorScore:
+    """The radar sensor score of synthetic runs against real runs (docs/fidelity-score.md, *Radar sensor score*):
+    per part a Hellinger distance — bearing and range error (Gaussians from mean and :func:`robust_sigma`), detection
+    (Bernoulli per range × aspect cell with ≥ ``n_min`` scans on both sides, the cells' shares shared), clutter
+    (Poisson per scan per range annulus) — and their :func:`weighted_combine` (``weights``, default
+    :data:`RADAR_SENSOR_WEIGHTS`). One joint circular block bootstrap over scans within each run (block length from
+    the data, :func:`sensor_block_length`) gives every part's and the overall interval (bias-shifted,
+    :func:`seatwin.evaluation.score.with_ci`). A part with too few values on a side is refused, left out and named."""
+    o = options or ScoreOptions()
+    w = dict(RADAR_SENSOR_WEIGHTS if weights is None else weights)
+    rr, ss = _prepared(real, range_edges, aspect_edges), _prepared(synthetic, range_edges, aspect_edges)
+    r_all, s_all = _cat(rr), _cat(ss)
+    cells = _detection_cells(r_all, s_all, o.n_min)
+    value = _parts(r_all, s_all, cells, o.n_min)
+    block = sensor_block_length(rr + ss)
+    rng = frame_rng(o.seed, "plot_terms/sensor", 0)
+    reps = {k: np.full(o.n_boot, np.nan) for k in value}
+    overall_reps = np.full(o.n_boot, np.nan)
+    for b in range(o.n_boot):
+        br = _cat([r.take(circular_block_indices(len(r.detected), block, rng)) for r in rr])
+        bs = _cat([x.take(circular_block_indices(len(x.detected), block, rng)) for x in ss])
+        p = _parts(br, bs, cells, 2)
+        for k in p:
+            reps[k][b] = p[k] if np.isfinite(value[k]) else np.nan
+        overall_reps[b] = weighted_combine({k: p[k] for k in p if np.isfinite(value[k])}, w)
+    reasons = {
+        "bearing": f"fewer than {o.n_min} target plots on a side",
+        "range": f"fewer than {o.n_min} target plots on a side",
+        "detection": f"no range × aspect cell with {o.n_min} scans on both sides",
+        "clutter": "no scans",
+    }
+    parts = {
+        k: with_ci(v, reps[k], o.level, weight=w[k]) if np.isfinite(v) else ScoreValue(None, reason=reasons[k])
+        for k, v in value.items()
+    }
+    total = weighted_combine(value, w)
+    counts = {
+        "n_scans_real": len(r_all.detected),
+        "n_scans_synthetic": len(s_all.detected),
+        "detection_cells": len(cells),
+    }
+    if not np.isfinite(total):
+        return SensorScore(ScoreValue(None, reason="no part defined", counts=counts), parts, w, block)
+    overall = with_ci(total, overall_reps, o.level, **counts)
+    left_out = [k for k, v in parts.items() if v.value is None]
+    if left_out:
+        overall.reason = "without " + "; ".join(f"{k}: {parts[k].reason}" for k in left_out)
+    return SensorScore(overall, parts, w, block)
+
+
+def sensor_lead(
+    real: Sequence[RadarPlotSample],
+    model_a: Sequence[RadarPlotSample],
+    model_b: Sequence[RadarPlotSample],
+    options: ScoreOptions | None = None,
+    weights: dict[str, float] | None = None,
+) -> Lead:
+    """How much lower (better) model A's radar sensor score is than model B's, ``S(B) − S(A)``, with a bootstrap
+    interval that resamples the real runs once for both models (:class:`Lead`: resolved when above 0)."""
+    o = options or ScoreOptions()
+    w = dict(RADAR_SENSOR_WEIGHTS if weights is None else weights)
+    sides = [_prepared(x, PD_RANGE_EDGES_M, ASPECT_EDGES_DEG) for x in (real, model_a, model_b)]
+    r, a, b = (_cat(x) for x in sides)
+    cells = np.intersect1d(_detection_cells(r, a, o.n_min), _detection_cells(r, b, o.n_min))
+
+    def gap(r_: _Arrays, a_: _Arrays, b_: _Arrays, n_min: int) -> float:
+        return weighted_combine(_parts(r_, b_, cells, n_min), w) - weighted_combine(_parts(r_, a_, cells, n_min), w)
+
+    value = gap(r, a, b, o.n_min)
+    if not np.isfinite(value):
+        return Lead("radar sensor score", "", None, reason="no part defined")
+    block = sensor_block_length([x for side in sides for x in side])
+    rng = frame_rng(o.seed, "plot_terms/sensor_lead", 0)
+    reps = np.array(
+        [
+            gap(*(_cat([x.take(circular_block_indices(len(x.detected), block, rng)) for x in side]) for side in sides), 2)
+            for _ in range(o.n_boot)
+        ]
+    )
+    return Lead("radar sensor score", "", value, percentile_interval(reps, o.level))

@@ -63,9 +63,9 @@ class ScoreOptions:
     n_min: int = 10
     """Fewest instants with a track, per dataset, behind an error distribution (else refused)."""
     n_boot: int = 200
-    block: int | None = 10
-    """Bootstrap block length [instants or scans]; None: chosen per term from its series' autocorrelation
-    (:func:`seatwin.evaluation.bootstrap.runs_block_length`)."""
+    block: int | None = None
+    """Bootstrap block length [instants or scans]; None (default): chosen per term from its series
+    (:func:`seatwin.evaluation.bootstrap.runs_block_length`, Politis–White)."""
     level: float = 0.95
     seed: int = 0
     clutter_gate: float = 25.0
@@ -162,6 +162,10 @@ def _with_ci(value: float, replicates: NDArray[np.float64], level: float, **coun
     bias = float(np.mean(replicates[np.isfinite(replicates)])) - value
     lo, hi = (float(np.clip(c - bias, 0.0, 1.0)) for c in ci)
     return ScoreValue(value, min(lo, value), max(hi, value), None, dict(counts), replicates)
+
+
+with_ci = _with_ci
+"""Public name of :func:`_with_ci`, for score terms defined in other modules (e.g. the radar sensor score)."""
 
 
 def _replicates(o: ScoreOptions, stream: str, replicate: Callable[[np.random.Generator], float]) -> NDArray[np.float64]:
@@ -300,14 +304,17 @@ class FidelityScore:
     targets: dict[str, ScoreValue]
     plots: dict[str, ScoreValue]
     """Plot-level terms by name: ``clutter``, ``false_tracks``, ``shape`` (and ``lidar_returns``:
-    :mod:`seatwin.evaluation.sensor_score`)."""
+    :mod:`seatwin.evaluation.sensor_score`); sensor scores (:func:`with_sensor_score`)."""
+    not_combined: dict[str, str] = field(default_factory=dict)
+    """Plot-level terms reported but left out of the overall score, with why (measured inside a sensor score)."""
 
     def to_dict(self) -> dict:
-        return {
+        out = {
             "score": self.overall.to_dict(),
             "targets": {k: v.to_dict() for k, v in self.targets.items()},
             **{k: v.to_dict() for k, v in self.plots.items()},
         }
+        return out | ({"not_combined": dict(self.not_combined)} if self.not_combined else {})
 
 
 def overall_score(
@@ -332,6 +339,19 @@ def overall_score(
     if left_out:
         out.reason = "without " + "; ".join(f"{k}: {plots[k].reason}" for k in left_out)
     return out
+
+
+def with_sensor_score(
+    score: FidelityScore, name: str, sensor: ScoreValue, replaces: Sequence[str] = (), options: ScoreOptions | None = None
+) -> FidelityScore:
+    """(S5 with a sensor score) ``score`` with the sensor-level score ``sensor`` (e.g. the radar sensor score,
+    :func:`seatwin.evaluation.plot_terms.radar_sensor_score`, weight 1) as one more factor of the overall score; the
+    plot terms ``replaces`` (measured again inside it, e.g. S4's clutter rate) are still reported but not combined,
+    so nothing counts twice. ``sensor``'s replicates must come from ``options.n_boot`` resamples like the others'."""
+    plots = {**score.plots, name: sensor}
+    combined = {k: v for k, v in plots.items() if k not in replaces and k not in score.not_combined}
+    why = {k: f"measured inside {name}" for k in replaces if k in plots}
+    return FidelityScore(overall_score(score.targets, combined, options), score.targets, plots, {**score.not_combined, **why})
 
 
 def _plot_window(tr: Tracks, window: tuple[float, float] | None) -> NDArray[np.int64]:
@@ -425,17 +445,21 @@ def score_runs(
     return FidelityScore(overall_score(targets, plots, o), targets, plots)
 
 
-def clutter_counts(times: ArrayLike, plots: Sequence[ArrayLike], truth: TruthSet, gate: float) -> NDArray[np.int64]:
-    """Per scan (at ``times``, POSIX), the plots (north/east) farther than ``gate`` [m] from every target of ``truth``."""
+def clutter_mask(times: ArrayLike, plots: Sequence[ArrayLike], truth: TruthSet, gate: float) -> list[NDArray[np.bool_]]:
+    """Per scan (at ``times``, POSIX), which plots (north/east) lie farther than ``gate`` [m] from every target of ``truth``."""
     tt = np.asarray(times, float)
     targets = np.stack([truth[n].state_at(tt)[:, [0, 2]] for n in truth.names], axis=1) if truth.names else None
-    out = np.zeros(len(plots), dtype=np.int64)
+    out = []
     for k, p in enumerate(plots):
         p = np.asarray(p, float).reshape(-1, 2)
         t = np.empty((0, 2)) if targets is None else targets[k][np.isfinite(targets[k][:, 0])]
         if len(p) and len(t):
-            d = np.hypot(p[:, None, 0] - t[None, :, 0], p[:, None, 1] - t[None, :, 1]).min(axis=1)
-            out[k] = int((d > gate).sum())
+            out.append(np.hypot(p[:, None, 0] - t[None, :, 0], p[:, None, 1] - t[None, :, 1]).min(axis=1) > gate)
         else:
-            out[k] = len(p)
+            out.append(np.ones(len(p), bool))
     return out
+
+
+def clutter_counts(times: ArrayLike, plots: Sequence[ArrayLike], truth: TruthSet, gate: float) -> NDArray[np.int64]:
+    """Per scan (at ``times``, POSIX), the plots (north/east) farther than ``gate`` [m] from every target of ``truth``."""
+    return np.array([int(m.sum()) for m in clutter_mask(times, plots, truth, gate)], dtype=np.int64)

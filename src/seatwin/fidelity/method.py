@@ -189,10 +189,11 @@ def window_evaluation(tracks: Tracks, truth: TruthSet, window: tuple[float, floa
 
 
 def score_options(opts: FidelityOptions) -> ScoreOptions:
-    """The score's conventions for a fidelity run: its bootstrap size, block length and seed."""
+    """The score's conventions for a fidelity run: its bootstrap size and seed; block lengths chosen from the data
+    (``opts.block`` is AHED's)."""
     from seatwin.evaluation.score import ScoreOptions
 
-    return ScoreOptions(n_boot=opts.n_boot, block=opts.block, seed=opts.seed0, clutter_gate=RADAR_CLUTTER_GATE_M)
+    return ScoreOptions(n_boot=opts.n_boot, block=None, seed=opts.seed0, clutter_gate=RADAR_CLUTTER_GATE_M)
 
 
 def window_score(
@@ -301,16 +302,24 @@ def evaluate_model(
                 result.comparisons[agent] = comp
             off_target[agent].append(off_target_tracks(tr, data, window))
             runs[agent].append(window_stats(comp.series[TARGET], window, seed))
+    sensor = None
     if real_sample is not None:
-        from seatwin.evaluation.plot_terms import radar_plot_terms
+        from seatwin.evaluation.plot_terms import radar_plot_terms, radar_sensor_score
 
         synth_samples = [window_plot_sample(data, plots, config, window, dont_care) for _, plots, _ in seeds]
         result.plot_samples = synth_samples
         terms = radar_plot_terms([real_sample], synth_samples, coverage_km2, score_options(opts))
         result.plot_terms = {k: v.to_dict() for k, v in terms.items()}
+        sensor = radar_sensor_score([real_sample], synth_samples, score_options(opts))
+        result.sensor_score = sensor.to_dict()
     for agent in opts.agents:
         floor = floor_stats(synth_tracks[agent], opts.seed0, truth, window, opts.tuning)
         score = window_score(real_tracks[agent], synth_tracks[agent], truth, window, score_options(opts), dont_care)
+        if sensor is not None and sensor.overall.value is not None:
+            from seatwin.evaluation.score import with_sensor_score
+
+            # The radar sensor score's clutter part is S4's clutter rate per range annulus: S4 is not combined again.
+            score = with_sensor_score(score, "radar_sensor", sensor.overall, ("clutter",), score_options(opts))
         result.agents[agent] = _agent_result(
             runs[agent], floor, off_target[agent], off_target_tracks(real_tracks[agent], data, window), opts, score
         )
@@ -466,13 +475,16 @@ def plot_term_leads(
     real: RadarPlotSample, models: dict[str, ModelResult], primary: str, coverage_km2: float, options: ScoreOptions
 ) -> dict[str, dict[str, dict]]:
     """Per other model, per radar plot-level term, how much closer the ``primary`` model is to the real recording
-    (:func:`seatwin.evaluation.plot_terms.lead`, as dicts): positive and resolved = the primary model is closer."""
-    from seatwin.evaluation.plot_terms import lead, radar_term_specs
+    (:func:`seatwin.evaluation.plot_terms.lead`, as dicts), and by how much its radar sensor score is lower
+    (``radar_sensor_score``: :func:`seatwin.evaluation.plot_terms.sensor_lead`): positive and resolved = the primary
+    model is closer."""
+    from seatwin.evaluation.plot_terms import lead, radar_term_specs, sensor_lead
 
     specs = radar_term_specs(coverage_km2)
     a = models[primary].plot_samples
     return {
         label: {k: lead(spec, [real], a, m.plot_samples, options).to_dict() for k, spec in specs.items()}
+        | {"radar_sensor_score": sensor_lead([real], a, m.plot_samples, options).to_dict()}
         for label, m in models.items()
         if label != primary
     }

@@ -23,7 +23,12 @@ class FidelityOptions(Settings):
     )
     seeds: int = Field(5, ge=1, description="Synthetic recordings (seeds) compared with the real one.")
     n_boot: int = Field(1000, ge=1, description="Bootstrap resamples of the AHED interval.")
-    block: int = Field(10, ge=1, description="Bootstrap block length [instants] (HED is autocorrelated over a few scans).")
+    block: int = Field(
+        10,
+        ge=1,
+        description="Bootstrap block length [instants] of the AHED interval (HED is autocorrelated over a few scans); the "
+        "score's blocks are chosen from the data.",
+    )
     fit_boot: int = Field(200, ge=0, description="Bootstrap resamples of the radar fit.")
     radar: str | None = Field(None, description="Radar YAML to start from (default: the built-in default model).")
     clutter: Literal["uniform", "map"] = Field("uniform", description="Clutter form of the fit.")

@@ -107,8 +107,9 @@ RANKING_NOTE = (
     "Score: the unpaired fidelity score (S5) of the synthetic runs (all seeds pooled) against the real run on the "
     "evaluation window, with its circular block bootstrap 95 % interval; its parts: the mean target score (error "
     "distribution Hellinger and coverage difference), the Poisson Hellinger distances of clutter plots per scan "
-    "and of false tracks alive per scan (and a plot-shape term where plots carry shapes, e.g. lidar clusters). "
-    "Lower is closer to the real data. AHED and the instant counts (means over seeds) "
+    "and of false tracks alive per scan (and a plot-shape term where plots carry shapes, e.g. lidar clusters); with "
+    "radar plots against ground truth, the radar sensor score (bearing, range, detection and clutter distributions) "
+    "takes the clutter term's place. Lower is closer to the real data. AHED and the instant counts (means over seeds) "
     "are the paired measure (5.34), shown beside it."
 )
 
@@ -139,15 +140,17 @@ def ranking_markdown(result: FidelityResult) -> list[str]:
     lines = [
         f"## Models ranked by fidelity score (agent `{result.primary_agent}`)",
         "",
-        "| rank | model | score | 95 % CI | targets | clutter | false tracks | AHED | common | only real | only synthetic |",
-        "|---:|---|---:|---|---:|---:|---:|---:|---:|---:|---:|",
+        "| rank | model | score | 95 % CI | targets | radar sensor | clutter | false tracks | AHED | common | only real "
+        "| only synthetic |",
+        "|---:|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
     notes = []
     for k, r in enumerate(result.ranking(), 1):
         score = _f(r["score"]) if r["score"] is not None else "refused"
         lines.append(
             f"| {k} | {r['model']} | {score} | {_ci((r['ci_low'], r['ci_high']))} | {_f(r['targets'])} | "
-            f"{_f(r['clutter'])} | {_f(r['false_tracks'])} | {_f(r['ahed'])} | {_f(r['n_common'], '.1f')} | "
+            f"{_f(r.get('radar_sensor'))} | {_f(r['clutter'])} | {_f(r['false_tracks'])} | {_f(r['ahed'])} | "
+            f"{_f(r['n_common'], '.1f')} | "
             f"{_f(r['n_only_real'], '.1f')} | {_f(r['n_only_synthetic'], '.1f')} |"
         )
         if r["reason"]:
@@ -181,6 +184,22 @@ def plot_terms_markdown(result: FidelityResult) -> list[str]:
                 f"| {label} | {name} | {_f(t['real'])} | {_f(t['synthetic'])} | {_f(t['difference'])} | "
                 f"{_ci(t['difference_ci'])} | {'yes' if t['resolved'] else 'no'} |"
             )
+    sensor = [(label, m.sensor_score) for label, m in result.models.items() if m.sensor_score]
+    if sensor:
+        parts = list(sensor[0][1]["parts"])
+        weights = ", ".join(f"{k} {w:g}" for k, w in sensor[0][1]["weights"].items())
+        lines += [
+            "",
+            f"Radar sensor score (Hellinger distances of the plots' error, detection and clutter distributions; "
+            f"weights {weights}; it replaces the clutter term in the overall score):",
+            "",
+            "| model | sensor score | 95 % CI | " + " | ".join(parts) + " |",
+            "|---|---:|---|" + "---:|" * len(parts),
+        ]
+        for label, sc in sensor:
+            o = sc["score"]
+            cells = [_f(sc["parts"][k]["value"]) if sc["parts"][k]["value"] is not None else "–" for k in parts]
+            lines.append(f"| {label} | {_f(o['value'])} | {_ci((o['ci_low'], o['ci_high']))} | " + " | ".join(cells) + " |")
     lines += ["", f"`{result.primary_model}`:", ""]
     lines += [f"* {t['sentence']}" for t in result.models[result.primary_model].plot_terms.values()]
     if result.plot_term_leads:

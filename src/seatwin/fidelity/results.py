@@ -143,6 +143,9 @@ class ModelResult:
     plot_terms: dict[str, Any] = field(default_factory=dict)
     """The radar plot-level terms on the evaluation window, all seeds pooled against the real recording
     (:func:`seatwin.evaluation.plot_terms.radar_plot_terms`, as dicts): per term real, model, signed difference."""
+    sensor_score: dict[str, Any] = field(default_factory=dict)
+    """The radar sensor score on the evaluation window, seeds pooled
+    (:meth:`seatwin.evaluation.plot_terms.SensorScore.to_dict`): overall, parts, weights, block length."""
     plot_samples: list[Any] = field(default_factory=list, repr=False)
     """Per seed, the :class:`seatwin.evaluation.plot_terms.RadarPlotSample` the terms were computed from."""
 
@@ -155,6 +158,7 @@ class ModelResult:
             "agents": {a: asdict(d) for a, d in self.agents.items()},
             "synthetic_statistics_mean": asdict(self.synthetic_statistics_mean),
             "plot_terms": self.plot_terms,
+            "sensor_score": self.sensor_score,
             "radar": self.radar,
         }
 
@@ -213,6 +217,7 @@ class FidelityResult:
                     "n_only_synthetic": d.n_only_synthetic,
                     "targets": parts.get("score", {}).get("counts", {}).get("targets_mean"),
                     "clutter": parts.get("clutter", {}).get("value"),
+                    "radar_sensor": parts.get("radar_sensor", {}).get("value"),
                     "false_tracks": parts.get("false_tracks", {}).get("value"),
                     "reason": d.score_reason,
                 }

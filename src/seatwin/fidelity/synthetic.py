@@ -36,15 +36,24 @@ def toy_dataset(n: int = 120, seed: int = 11) -> JoyrideData:
     return simulated(JoyrideData(t, [np.empty((0, 2))] * n, tgt, own, "<toy>"), TOY_RADAR, seed)
 
 
-def orbit_dataset(radar: dict[str, Any] | RadarConfig, n: int = 200, seed: int = 11) -> JoyrideData:
+def orbit_dataset(
+    radar: dict[str, Any] | RadarConfig,
+    n: int = 200,
+    seed: int = 11,
+    radius: float = 300.0,
+    centre_east: float = 150.0,
+    speed: float = 5.0,
+    phase: float = 0.0,
+) -> JoyrideData:
     """A "real" recording made by a known ``radar`` model: the ownship drifting north at 0.5 m/s, the target
-    circling at 5 m/s on a 300 m circle centred 150 m east of the ownship's start (ranges ~150–450 m, every
-    aspect), ``n`` scans 2.5 s apart."""
+    circling at ``speed`` m/s on a ``radius`` m circle centred ``centre_east`` m east of the ownship's start, starting
+    ``phase`` rad round it (defaults: ranges ~150–450 m, every aspect), ``n`` scans 2.5 s apart."""
     t = 1.5e9 + 2.5 * np.arange(n)
     s = t - t[0]
     own = np.column_stack([0.5 * s, np.full(n, 0.5), np.zeros(n), np.zeros(n)])
-    w = 5.0 / 300.0
-    tgt = np.column_stack([300 * np.sin(w * s), 300 * w * np.cos(w * s), 150 + 300 * np.cos(w * s), -300 * w * np.sin(w * s)])
+    w = speed / radius
+    a = w * s + phase
+    tgt = np.column_stack([radius * np.sin(a), radius * w * np.cos(a), centre_east + radius * np.cos(a), -radius * w * np.sin(a)])
     return simulated(JoyrideData(t, [np.empty((0, 2))] * n, tgt, own, "<orbit>"), radar, seed)
 
 
