@@ -39,8 +39,7 @@ def simulate_run(scenario: str, model: str, seed: int, duration: float, cache: s
     from seatwin.campaign.grid import window_offset
     from seatwin.evaluation import evaluate
     from seatwin.evaluation.truth import truth_from_scenario
-    from seatwin.pipeline.track import recording_mask
-    from seatwin.pipeline.track import track_recording
+    from seatwin.pipeline.track import recording_mask, track_recording
     from seatwin.scenario.load import load_scenario
     from seatwin.sim import simulate_scenario
 
