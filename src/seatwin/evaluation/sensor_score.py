@@ -63,4 +63,4 @@ def score_runs_with_sensor_terms(
     else:
         plots["lidar_returns"] = lidar_returns_score(r, s, o)
         terms = lidar_terms(r, s, o)
-    return SensorFidelityScore(overall_score(base.targets, plots, o), base.targets, plots, terms)
+    return SensorFidelityScore(overall_score(base.targets, plots, o), base.targets, plots, lidar_terms=terms)
