@@ -137,6 +137,13 @@ class TrackerConfig(BaseModel):
         "the exclusion gate is 'associated' (two boats closer than the gate share one track). Our choice: 0.5, "
         "a measurement more likely new than explained.",
     )
+    init_association_sensors: tuple[str, ...] = Field(
+        ("radar",),
+        description="The sensors whose scans init_association_max applies to; the others keep the thesis's rule. Our "
+        "choice: radar only — a radar plot is one per boat, while the lidar clusters of one boat's hull often fall "
+        "apart into several plots a scan, which the rule would start as duplicate tracks (ferry_crossing, 20 s, "
+        "lidar, tuning synthetic: 97 confirmed tracks with the rule on lidar, 24 without).",
+    )
     max_hypotheses: int = Field(
         10000,
         ge=1,

@@ -119,6 +119,8 @@ class JIPDATracker:
         confirmed nor kept (:meth:`_manage`)."""
         self.config = config
         self.water = water
+        self._free_inside = False
+        """Whether the scan being processed may start tracks inside a track's exclusion gate (``init_association_max``)."""
         self.x = np.zeros((0, 4))
         self.P = np.zeros((0, 4, 4))
         self.r = np.zeros(0)
@@ -194,6 +196,7 @@ class JIPDATracker:
         if not np.isfinite(scan.z).all():
             raise InputError("scans", f"{scan.sensor} scan at {scan.time!r} has non-finite measurements")
         tuning = c.sensor(scan.sensor)
+        self._free_inside = c.init_association_max is not None and scan.sensor in c.init_association_sensors
         self._predict(scan.time)
         z = scan.z
         if tuning.bearing_bias and scan.kind is not MeasurementKind.CARTESIAN and z.shape[0]:
@@ -265,17 +268,18 @@ class JIPDATracker:
         Gaussians' log normalisers, ``lam`` (M,) clutter densities; ``beta``: the JIPDA marginals when the
         validation gate is the exclusion gate (then reused).
 
-        A measurement outside every track's exclusion gate is free. Inside one, with ``init_association_max``
-        null (the thesis's rule) it is explained; otherwise it is explained when the JIPDA posterior probability
-        that an existing track produced it, Σ_t β_tj with the marginals solved over the exclusion gate, is at
-        least ``init_association_max``, and free with weight 1 − Σ_t β_tj below it. A track takes at most one
-        measurement a scan, so of two plots in one gate that one track cannot both explain (a second boat 20 m
-        away), the less likely one stays free to start a track, whereas a track's own detection, alone in its
-        gate, is explained unless it lies so far out that its likelihood is down to the clutter density's.
+        A measurement outside every track's exclusion gate is free. Inside one, with ``init_association_max`` null
+        or a sensor not in ``init_association_sensors`` (the thesis's rule) it is explained; otherwise it is
+        explained when the JIPDA posterior probability that an existing track produced it, Σ_t β_tj with the
+        marginals solved over the exclusion gate, is at least ``init_association_max``, and free with weight 1 −
+        Σ_t β_tj below it. A track takes at most one measurement a scan, so of two plots in one gate that one
+        track cannot both explain (a second boat 20 m away), the less likely one stays free to start a track,
+        whereas a track's own detection, alone in its gate, is explained unless it lies so far out that its
+        likelihood is down to the clutter density's.
         """
         c = self.config
         inside = d2 < self._excl[dim]
-        if c.init_association_max is None or not inside.any():
+        if not self._free_inside or not inside.any():
             return (~inside.any(axis=0)).astype(float)
         if beta is None:
             L = _likelihood_ratio(inside, d2, log_norm, lam, tuning.p_detect)
