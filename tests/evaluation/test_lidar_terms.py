@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -279,3 +283,26 @@ def test_score_runs_with_sensor_terms_reports_the_lidar_terms_one_by_one():
     assert "too thick" in d["lidar_terms"]["thickness_25_50m"]["sentence"] and d["lidar_returns"]["value"] > 0.1
     same = score_runs_with_sensor_terms([real], [run(0.05, 3)], truth, [ev_r], [ev_r], ScoreOptions(n_boot=40))
     assert same.plots["lidar_returns"].value < f.plots["lidar_returns"].value
+
+
+def test_combined_distance_does_not_depend_on_the_hash_seed():
+    """The families are summed in a fixed order: a Ray worker (another PYTHONHASHSEED) gives the driver's bits."""
+    code = (
+        "import numpy as np; from seatwin.evaluation.lidar_terms import combined_distance\n"
+        "rng = np.random.default_rng(3)\n"
+        "keys = ['pd_0', 'points_0', 'depth_0', 'width_0', 'thickness_0', 'depth_1', 'width_1']\n"
+        "r = {k: [rng.uniform(0.2, 0.9, 40) if k.startswith('pd') else rng.uniform(0.5, 3, 40)] for k in keys}\n"
+        "s = {k: [v[0] * rng.uniform(0.7, 1.3, 40)] for k, v in r.items()}\n"
+        "print(repr(combined_distance(r, s, 5)[0]))\n"
+    )
+    outs = {
+        subprocess.run(
+            [sys.executable, "-c", code],
+            env=os.environ | {"PYTHONHASHSEED": str(seed)},
+            capture_output=True,
+            text=True,
+            check=True,
+        ).stdout
+        for seed in range(12)
+    }
+    assert len(outs) == 1, outs

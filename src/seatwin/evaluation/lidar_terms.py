@@ -259,7 +259,9 @@ def combined_distance(
             d[key] = term_distance(key, xr, xs)
     if not d:
         return float("nan"), d
-    fams = {k.split("_", 1)[0] for k in d}
+    # a dict, not a set: the families' order (and so the float sum below) must not depend on PYTHONHASHSEED,
+    # or a Ray worker and the driver differ in the last digit
+    fams = dict.fromkeys(k.split("_", 1)[0] for k in d)
     per_family = {f: [v for k, v in d.items() if k.split("_", 1)[0] == f] for f in fams}
     w = sum(FAMILY_WEIGHTS[f] for f in fams)
     return float(sum(FAMILY_WEIGHTS[f] * np.mean(v) for f, v in per_family.items()) / w), d
