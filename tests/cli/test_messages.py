@@ -102,3 +102,9 @@ def test_simulate_summary_in_words(tmp_path: Path, capsys: pytest.CaptureFixture
     assert run([*argv, "--sensors", "lidar,radar"]) == 0
     out = capsys.readouterr().out
     assert "frames: ground truth 5, lidar 5" in out and "{" not in out
+
+
+def test_a_parameter_is_named_by_the_verbs_own_flag(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """``vessels`` is ``--vessels`` in ``serve`` (a list) and ``--vessel`` in ``groundtruth`` (one a flag)."""
+    err = _error(capsys, ["serve", "--vessels", "A,A", "--ownship", "A", "--out", str(tmp_path / "run")])
+    assert err == "--vessels: vessel names must be unique, got ['A', 'A']"

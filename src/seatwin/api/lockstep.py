@@ -202,7 +202,7 @@ class LockstepSimulation:
         if s.ownship is not None and s.ownship not in s.vessels:
             raise ParameterError("ownship", f"{s.ownship!r} is not one of the vessels {list(s.vessels)}")
         if len(set(s.vessels)) != len(s.vessels):
-            raise ParameterError("--vessels", f"vessel names must be unique, got {list(s.vessels)}")
+            raise ParameterError("vessels", f"vessel names must be unique, got {list(s.vessels)}")
         if s.sensors and s.ownship is None:
             raise ParameterError("sensors", "sensors need an ownship to carry them")
         placeholder = Trajectory(np.array([0.0, 1.0]), np.zeros(2), np.zeros(2), np.zeros(2), source="seatwin serve")

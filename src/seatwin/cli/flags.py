@@ -46,12 +46,15 @@ FLAG_OF: dict[str, str] = {
     "camera_hfov_deg": "--camera-hfov",
 }
 
+FLAG_OF_IN_VERB: dict[str, dict[str, str]] = {"serve": {"vessels": "--vessels"}}
+"""Where one verb spells a parameter otherwise than :data:`FLAG_OF` (``serve --vessels A,B`` vs ``groundtruth --vessel``)."""
 
-def flag_for(param: str) -> str:
-    """The flag of library parameter ``param`` (``ray_drop`` → ``--ray-drop``); a flag is returned as is."""
+
+def flag_for(param: str, verb: str | None = None) -> str:
+    """The flag of library parameter ``param`` (``ray_drop`` → ``--ray-drop``) in ``verb``; a flag is returned as is."""
     if param.startswith("-"):
         return param
-    return FLAG_OF.get(param, "--" + param.replace("_", "-"))
+    return FLAG_OF_IN_VERB.get(verb or "", {}).get(param) or FLAG_OF.get(param, "--" + param.replace("_", "-"))
 
 
 def old_spelling(old: str, new: str) -> Any:

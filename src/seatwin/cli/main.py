@@ -14,7 +14,6 @@ import warnings
 from collections.abc import Sequence
 
 import typer
-from typer._click.exceptions import NoArgsIsHelpError
 
 from seatwin import __version__
 from seatwin.cli.flags import flag_for
@@ -99,7 +98,7 @@ def _run(argv: Sequence[str] | None) -> int:
             code = app(args=list(argv) if argv is not None else None, prog_name="seatwin", standalone_mode=False)
     except ParameterError as exc:
         hint = f" (give {flag_for('overwrite')} to replace it)" if isinstance(exc, OutputExistsError) else ""
-        typer.echo(f"seatwin: error: {exc.render(flag_for(exc.param))}{hint}", err=True)
+        typer.echo(f"seatwin: error: {exc.render(flag_for(exc.param, _verb(argv)))}{hint}", err=True)
         return 2
     except InputError as exc:
         typer.echo(f"seatwin: error: {exc}", err=True)
@@ -111,11 +110,11 @@ def _run(argv: Sequence[str] | None) -> int:
         return 130
     except KeyboardInterrupt as exc:
         return _interrupted(exc)
-    except NoArgsIsHelpError as exc:  # bare ``seatwin`` or ``seatwin bag``: the help (Rich has printed it already)
-        if exc.format_message().strip():
-            typer.echo(exc.format_message())
-        return 0
     except typer.TyperException as exc:  # usage errors: unknown verb or option, bad value, missing option
+        if _is_no_args_help(exc):  # bare ``seatwin`` or ``seatwin bag``: the help (Rich has printed it already)
+            if exc.format_message().strip():
+                typer.echo(exc.format_message())
+            return 0
         typer.echo(f"seatwin: error: {exc.format_message()}", err=True)
         return 2 if exc.exit_code in (1, 2) else exc.exit_code
     except (OSError, RecursionError, MemoryError, OverflowError) as exc:  # the last resort: one line, no traceback
@@ -124,6 +123,18 @@ def _run(argv: Sequence[str] | None) -> int:
     if code == 130 and raised() is not None:  # typer returns a KeyboardInterrupt as 130, silently: say which signal
         return _interrupted(Interrupted(raised()))  # type: ignore[arg-type]
     return code if isinstance(code, int) else 0
+
+
+def _is_no_args_help(exc: Exception) -> bool:
+    """Click's ``NoArgsIsHelpError``, by name: typer vendors click privately (``typer._click``), so the class has no
+    public import path that holds across typer versions."""
+    return any(c.__name__ == "NoArgsIsHelpError" for c in type(exc).__mro__)
+
+
+def _verb(argv: Sequence[str] | None) -> str | None:
+    """The verb of the command line (its first word that is not an option), for :func:`flag_for`."""
+    args = list(argv) if argv is not None else sys.argv[1:]
+    return next((a for a in args if not a.startswith("-")), None)
 
 
 def last_resort_message(exc: BaseException) -> str:
