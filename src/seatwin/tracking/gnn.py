@@ -23,6 +23,7 @@ from numpy.typing import NDArray
 from seatwin.tracking import ekf
 from seatwin.tracking.association import existence_posterior
 from seatwin.tracking.config import SensorTuning
+from seatwin.tracking.models import MeasurementModel
 from seatwin.tracking.tracker import JIPDATracker, TrackTable
 
 Array = NDArray[np.float64]
@@ -53,7 +54,9 @@ def gnn_assign(log_ratio: Array, gated: NDArray[np.bool_], log_miss: Array) -> N
 class GNNTracker(JIPDATracker):
     """JIPDATracker with global-nearest-neighbour association (hard decisions)."""
 
-    def _update(self, model, z: Array, R: Array, g2: float, pd_pg: float, tuning: SensorTuning) -> Array:  # noqa: ANN001
+    def _update(
+        self, model: MeasurementModel, z: Array, R: Array, g2: float, pd_pg: float, tuning: SensorTuning, free_inside: bool
+    ) -> Array:
         x, P, r = self.x, self.P, self.r
         zhat, H = model.predict(x)
         S = ekf.innovation_covariance(P, H, R)
@@ -64,7 +67,7 @@ class GNNTracker(JIPDATracker):
         log_norm = -0.5 * (ekf.log_det_small(S) + z.shape[1] * _LOG_2PI)
         lam = model.clutter_density(z, tuning.clutter_density)
         # Initiation: the same rule as the JIPDA agent (soft marginals over the exclusion gate).
-        unexplained = self._explained(r, d2, log_norm, lam, z.shape[1], tuning)
+        unexplained = self._explained(r, d2, log_norm, lam, z.shape[1], tuning, free_inside)
         if not gated.any():
             self.r = existence_posterior(r, np.ones(r.size), pd_pg)[0]
             return unexplained

@@ -119,8 +119,6 @@ class JIPDATracker:
         confirmed nor kept (:meth:`_manage`)."""
         self.config = config
         self.water = water
-        self._free_inside = False
-        """Whether the scan being processed may start tracks inside a track's exclusion gate (``init_association_max``)."""
         self.x = np.zeros((0, 4))
         self.P = np.zeros((0, 4, 4))
         self.r = np.zeros(0)
@@ -196,7 +194,7 @@ class JIPDATracker:
         if not np.isfinite(scan.z).all():
             raise InputError("scans", f"{scan.sensor} scan at {scan.time!r} has non-finite measurements")
         tuning = c.sensor(scan.sensor)
-        self._free_inside = c.init_association_max is not None and scan.sensor in c.init_association_sensors
+        free_inside = c.init_association_max is not None and scan.sensor in c.init_association_sensors
         self._predict(scan.time)
         z = scan.z
         if tuning.bearing_bias and scan.kind is not MeasurementKind.CARTESIAN and z.shape[0]:
@@ -212,7 +210,7 @@ class JIPDATracker:
         if T:
             model = model_for_scan(scan, R)
             if M:
-                unexplained = self._update(model, z, R, g2, pd_pg, tuning)
+                unexplained = self._update(model, z, R, g2, pd_pg, tuning, free_inside)
             else:
                 self.r = existence_posterior(self.r, np.ones(T), pd_pg)[0]
             self._manage()
@@ -221,9 +219,12 @@ class JIPDATracker:
             self._initiate(scan, z[free], tuning, unexplained[free])
         return self.snapshot()
 
-    def _update(self, model: MeasurementModel, z: Array, R: Array, g2: float, pd_pg: float, tuning: SensorTuning) -> Array:
+    def _update(
+        self, model: MeasurementModel, z: Array, R: Array, g2: float, pd_pg: float, tuning: SensorTuning, free_inside: bool
+    ) -> Array:
         """Update the tracks with one scan's measurements ``z``; return each measurement's probability of coming from
-        no existing track as far as initiation is concerned (:meth:`_explained`)."""
+        no existing track as far as initiation is concerned (:meth:`_explained`; ``free_inside``: whether this scan's
+        sensor may start tracks inside a track's exclusion gate, ``init_association_sensors``)."""
         x, P, r = self.x, self.P, self.r
         zhat, H = model.predict(x)
         S = ekf.innovation_covariance(P, H, R)
@@ -235,11 +236,12 @@ class JIPDATracker:
         lam = model.clutter_density(z, tuning.clutter_density)
         if not gated.any():
             self.r = existence_posterior(r, np.ones(r.size), pd_pg)[0]
-            return self._explained(r, d2, log_norm, lam, z.shape[1], tuning)
+            return self._explained(r, d2, log_norm, lam, z.shape[1], tuning, free_inside)
         L = _likelihood_ratio(gated, d2, log_norm, lam, tuning.p_detect)
         c = self.config
         beta0, beta = jipda_marginals(r, L, gated, pd_pg, c.max_hypotheses, c.association, c.max_frontier_work)
-        unexplained = self._explained(r, d2, log_norm, lam, z.shape[1], tuning, beta if self._excl[z.shape[1]] == g2 else None)
+        reuse = beta if self._excl[z.shape[1]] == g2 else None
+        unexplained = self._explained(r, d2, log_norm, lam, z.shape[1], tuning, free_inside, reuse)
         r_post, w0 = existence_posterior(r, beta0, pd_pg)
         # Mixture of the EKF corrections, conditional on existence.
         W = ekf.gain(P, H, S_inv)  # (T, 4, d)
@@ -260,7 +262,15 @@ class JIPDATracker:
         return unexplained
 
     def _explained(
-        self, r: Array, d2: Array, log_norm: Array, lam: Array, dim: int, tuning: SensorTuning, beta: Array | None = None
+        self,
+        r: Array,
+        d2: Array,
+        log_norm: Array,
+        lam: Array,
+        dim: int,
+        tuning: SensorTuning,
+        free_inside: bool,
+        beta: Array | None = None,
     ) -> Array:
         """(M,) each measurement's weight for initiation (thesis 5.1.3: only unassociated measurements start tracks):
         0 where existing tracks explain it (it starts nothing), else the probability that no existing track produced
@@ -268,18 +278,18 @@ class JIPDATracker:
         Gaussians' log normalisers, ``lam`` (M,) clutter densities; ``beta``: the JIPDA marginals when the
         validation gate is the exclusion gate (then reused).
 
-        A measurement outside every track's exclusion gate is free. Inside one, with ``init_association_max`` null
-        or a sensor not in ``init_association_sensors`` (the thesis's rule) it is explained; otherwise it is
-        explained when the JIPDA posterior probability that an existing track produced it, Σ_t β_tj with the
-        marginals solved over the exclusion gate, is at least ``init_association_max``, and free with weight 1 −
-        Σ_t β_tj below it. A track takes at most one measurement a scan, so of two plots in one gate that one
+        A measurement outside every track's exclusion gate is free. Inside one, without ``free_inside``
+        (``init_association_max`` null or a sensor not in ``init_association_sensors``: the thesis's rule) it is
+        explained; otherwise it is explained when the JIPDA posterior probability that an existing track produced
+        it, Σ_t β_tj with the marginals solved over the exclusion gate, is at least ``init_association_max``, and
+        free with weight 1 − Σ_t β_tj below it. A track takes at most one measurement a scan, so of two plots in one gate that one
         track cannot both explain (a second boat 20 m away), the less likely one stays free to start a track,
         whereas a track's own detection, alone in its gate, is explained unless it lies so far out that its
         likelihood is down to the clutter density's.
         """
         c = self.config
         inside = d2 < self._excl[dim]
-        if not self._free_inside or not inside.any():
+        if not free_inside or not inside.any():
             return (~inside.any(axis=0)).astype(float)
         if beta is None:
             L = _likelihood_ratio(inside, d2, log_norm, lam, tuning.p_detect)
