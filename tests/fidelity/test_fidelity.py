@@ -334,3 +334,15 @@ def test_no_dont_care_and_plot_terms_on_the_toy_dataset(toy_mat, tmp_path):
     assert -1.0 < bias["real"] < 0.0  # the toy radar's bearing bias is −0.5°
     assert set(j["plot_term_leads"]) == {"default"}
     assert "## Radar plot-level terms" in (out / "fidelity.md").read_text()
+
+
+def test_fit_by_score_replaces_the_moment_fit(toy_mat):
+    """``fit_by="score"``: the fitted model is fit_by_score's (started from the moment fit), with its report."""
+    from seatwin.fidelity import run_fidelity
+
+    kw = dict(seeds=1, agents=("gnn",), n_boot=20, fit_boot=0, fit_on="first-half")
+    moments, score = run_fidelity(str(toy_mat), **kw), run_fidelity(str(toy_mat), fit_by="score", **kw)
+    assert "score_fit" in score.radar_fit and "score_fit" not in moments.radar_fit
+    fitted = score.models["fitted"].radar["noise"]
+    assert score.radar_fit["score_fit"]["parameters"]["bearing_bias_deg"]["estimate"] == fitted["bearing_bias_deg"]
+    assert fitted != moments.models["fitted"].radar["noise"]

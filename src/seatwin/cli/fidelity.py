@@ -51,6 +51,13 @@ def register(app: typer.Typer) -> None:
         ),
         boot: int = typer.Option(1000, "--boot", min=10, help="Bootstrap resamples of the AHED interval."),
         fit_boot: int = typer.Option(200, "--fit-boot", min=0, help="Bootstrap resamples of the radar fit."),
+        fit_by: str = typer.Option(
+            "moments",
+            "--fit-by",
+            metavar="HOW",
+            help="Fit the radar by: moments (plot statistics) or score (then matched in the radar sensor score's own "
+            "statistics by simulation, as 'seatwin radar fit --by-score').",
+        ),
         seed: int = typer.Option(0, "--seed", help="First seed (seeds are SEED … SEED+N−1)."),
         calibrate_bias: bool = typer.Option(
             False,
@@ -98,6 +105,7 @@ def register(app: typer.Typer) -> None:
                 "seeds": seeds,
                 "n_boot": boot,
                 "fit_boot": fit_boot,
+                "fit_by": fit_by,
                 "radar": str(radar) if radar else None,
                 "clutter": clutter,
                 "agents": split_list(agents, "agents"),

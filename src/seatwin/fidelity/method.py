@@ -413,6 +413,10 @@ def run_fidelity(
     if opts.fit_on != "none":
         obs = observations(data, base, scene).subset(fit_idx)
         fit = fit_radar(obs, base, n_boot=opts.fit_boot, clutter=opts.clutter, seed=opts.seed0)
+        if opts.fit_by == "score":
+            from seatwin.fidelity.radar_fit import refit_by_score
+
+            refit_by_score(fit, data, fit_idx, opts.fit_boot, opts.seed0)
         models["fitted"] = fit.config
         fit_report = fit.report
         if opts.ablations:

@@ -30,6 +30,12 @@ class FidelityOptions(Settings):
         "score's blocks are chosen from the data.",
     )
     fit_boot: int = Field(200, ge=0, description="Bootstrap resamples of the radar fit.")
+    fit_by: Literal["moments", "score"] = Field(
+        "moments",
+        description="How the radar model is fitted: moments (plot statistics about the truth: seatwin.sensors.radar.fit) "
+        "or score (then matched to the real plots in the radar sensor score's own statistics by simulation: "
+        "seatwin.fidelity.radar_fit.fit_by_score, so the fit and the score agree; ~8 replica runs more).",
+    )
     radar: str | None = Field(None, description="Radar YAML to start from (default: the built-in default model).")
     clutter: Literal["uniform", "map"] = Field("uniform", description="Clutter form of the fit.")
     agents: tuple[Literal["jipda", "gnn"], ...] = Field(

@@ -88,11 +88,17 @@ def fit_radar_to_recording(
         from seatwin.fidelity.joyride import load_joyride
 
         data = load_joyride(recording)
-        idx = np.arange(len(data) // 2) if first_half else None
-        sf = fit_by_score(data, res.config, idx, n_boot=max(boot, 1), seed=seed)
-        res.report["score_fit"] = sf.to_dict()
-        res.config = sf.config.model_copy(update={"fit": res.report})
+        refit_by_score(res, data, np.arange(len(data) // 2) if first_half else None, boot, seed)
     return res, obs
+
+
+def refit_by_score(fit: RadarFit, data: JoyrideData, indices: ArrayLike | None, boot: int, seed: int) -> RadarFit:
+    """Replace a moment fit's parameters (in place) by :func:`fit_by_score`'s, started from them; its report goes
+    under ``report["score_fit"]``."""
+    sf = fit_by_score(data, fit.config, indices, n_boot=max(boot, 1), seed=seed)
+    fit.report["score_fit"] = sf.to_dict()
+    fit.config = sf.config.model_copy(update={"fit": fit.report})
+    return fit
 
 
 SCORE_FIT_ITERATIONS = 3
