@@ -1,0 +1,77 @@
+"""The out-of-process agent transport's cost per step: CPU of seatwin's process and of the agent's, and wall time.
+
+The agent is docs/examples/agents/grpc_agent.py (ground truth in, a set-point out: the agent's own work is a few
+hundred floating-point operations, so what is measured is the transport). Each run is made twice, ``--steps`` steps
+and ``--short`` steps, and the difference is divided by the difference in steps, so the start-up (launching Python,
+importing grpc, the server) is not counted; the same for the same policy in process (the test's ``InProcessTwin``).
+Prints JSON on its last line.
+
+    PYTHONPATH=src .venv/bin/python benchmarks/agent_link.py --steps 2000
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import resource
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+# This folder's grpc.py (a benchmark) would shadow the grpc package: drop the script's folder from the path.
+sys.path = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
+sys.path.insert(0, str(ROOT / "tests" / "api"))
+
+from test_agent_link import EXAMPLE, InProcessTwin  # noqa: E402
+
+from seatwin.api.agent_link import RemoteAgent  # noqa: E402
+from seatwin.encounters import encounter_scenario, space  # noqa: E402
+from seatwin.verification import run_closed_loop  # noqa: E402
+
+
+def _children_cpu() -> float:
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def measure(scenario: object, steps: int, mode: str, remote: bool) -> dict[str, float]:
+    """Own CPU, the agent process's CPU (its whole life) and wall time of one run of ``steps`` steps."""
+    duration = (steps - 1) * 0.1
+    c0, k0, w0 = time.process_time(), _children_cpu(), time.perf_counter()
+    if remote:
+        with RemoteAgent("bench", command=[sys.executable, str(EXAMPLE), "{address}", "--mode", mode]) as agent:
+            rec = run_closed_loop(scenario, agent, duration=duration)
+    else:
+        rec = run_closed_loop(scenario, InProcessTwin(mode), duration=duration)
+    assert rec.time.size == steps, (rec.time.size, steps)
+    return {"cpu_s": time.process_time() - c0, "agent_cpu_s": _children_cpu() - k0, "wall_s": time.perf_counter() - w0}
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--steps", type=int, default=2000)
+    ap.add_argument("--short", type=int, default=20)
+    ap.add_argument("--mode", default="velocity")
+    a = ap.parse_args()
+    sp = space("head_on", tcpa=(150.0, 150.0), run_out=60.0)
+    scenario = encounter_scenario(sp.encounter([0.5] * sp.dimension), "bench", "none", 1)[0]
+    out: dict[str, object] = {"steps": a.steps, "short": a.short, "mode": a.mode}
+    for remote in (False, True):
+        long, short = measure(scenario, a.steps, a.mode, remote), measure(scenario, a.short, a.mode, remote)
+        n = a.steps - a.short
+        per = {f"{k}_per_step_ms": 1000 * (long[k] - short[k]) / n for k in long}
+        out["grpc" if remote else "in_process"] = {**per, "long": long, "short": short}
+        print(("grpc" if remote else "in process"), {k: round(v, 4) for k, v in per.items()}, flush=True)
+    g, p = out["grpc"], out["in_process"]
+    assert isinstance(g, dict) and isinstance(p, dict)
+    out["overhead_per_step_ms"] = {
+        "seatwin_cpu": g["cpu_s_per_step_ms"] - p["cpu_s_per_step_ms"],
+        "agent_cpu": g["agent_cpu_s_per_step_ms"],
+        "wall": g["wall_s_per_step_ms"] - p["wall_s_per_step_ms"],
+    }
+    print(json.dumps(out))
+
+
+if __name__ == "__main__":
+    main()
