@@ -187,3 +187,35 @@ def test_bad_parameters_are_named():
         RemoteAgent(address="nowhere")
     with pytest.raises(ParameterError, match="cannot start the agent"):
         RemoteAgent(command=["/nonexistent/agent"])
+
+
+HOST = (
+    "import sys; from seatwin.agents import make_agent; from seatwin.api.agent_host import host_agent; "
+    "sys.exit(0 if host_agent(make_agent('reference', sensors=('lidar',)), sys.argv[1]) > 0 else 1)"
+)
+
+
+def test_the_reference_agent_on_lidar_is_bit_identical_hosted_in_another_process(scenario):
+    """seatwin's own agent (lidar clustering + JIPDA + velocity obstacles) in another process: lidar sweeps (float32
+    columns in Gemini's message), their mounts and the navigation cross the wire without a bit lost."""
+    from seatwin.agents import make_agent
+
+    local = run_closed_loop(scenario, make_agent("reference", sensors=("lidar",)), duration=6.0)
+    with RemoteAgent("reference", ("lidar",), command=[sys.executable, "-c", HOST, "{address}"]) as agent:
+        remote = run_closed_loop(scenario, agent, duration=6.0)
+        assert agent.close() == 0
+    assert remote.frames["lidar"] == local.frames["lidar"] > 40
+    assert local.n_tracks.max() >= 1  # it tracked the target from the lidar: the sweeps carried information
+    _same(local, remote)
+
+
+def test_hostile_frames_are_named():
+    from seatwin.api.agent_host import frames_of
+    from seatwin.api.proto import agent_link_pb2 as pb
+    from seatwin.errors import InputError
+
+    bad_mount = pb.Step(frames=[pb.Frame(sensor="truth", truth=pb.TruthFrame(), mount=[1.0, 2.0])])
+    with pytest.raises(InputError, match="12 numbers"):
+        frames_of(bad_mount, {})
+    with pytest.raises(InputError, match="no data"):
+        frames_of(pb.Step(frames=[pb.Frame(sensor="lidar")]), {})

@@ -27,6 +27,7 @@ from types import SimpleNamespace
 from typing import Any
 
 import grpc
+import numpy as np
 
 from seatwin.agents.interface import (
     Command,
@@ -69,6 +70,8 @@ def _gemini_navigation(nav: Navigation, vessel: str) -> Any:
 def _frame(frame: SensorFrame) -> Any:
     pb = agent_link_pb2
     out = pb.Frame(sensor=frame.sensor, time=frame.time, navigation=_state(frame.navigation))
+    if frame.mount is not None:
+        out.mount.extend([*frame.mount.translation, *np.asarray(frame.mount.rotation, dtype=float).reshape(9)])
     if frame.sensor == "truth":
         out.truth.targets.extend(
             pb.Target(name=t.name, north=t.north, east=t.east, v_north=t.v_north, v_east=t.v_east, length=t.length, beam=t.beam)

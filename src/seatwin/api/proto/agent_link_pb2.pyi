@@ -91,18 +91,20 @@ class TruthFrame(_message.Message):
     def __init__(self, targets: _Optional[_Iterable[_Union[Target, _Mapping]]] = ...) -> None: ...
 
 class Frame(_message.Message):
-    __slots__ = ("sensor", "time", "navigation", "truth", "lidar")
+    __slots__ = ("sensor", "time", "navigation", "truth", "lidar", "mount")
     SENSOR_FIELD_NUMBER: _ClassVar[int]
     TIME_FIELD_NUMBER: _ClassVar[int]
     NAVIGATION_FIELD_NUMBER: _ClassVar[int]
     TRUTH_FIELD_NUMBER: _ClassVar[int]
     LIDAR_FIELD_NUMBER: _ClassVar[int]
+    MOUNT_FIELD_NUMBER: _ClassVar[int]
     sensor: str
     time: float
     navigation: State
     truth: TruthFrame
     lidar: _sensor_streaming_pb2.LidarStreamingRequest
-    def __init__(self, sensor: _Optional[str] = ..., time: _Optional[float] = ..., navigation: _Optional[_Union[State, _Mapping]] = ..., truth: _Optional[_Union[TruthFrame, _Mapping]] = ..., lidar: _Optional[_Union[_sensor_streaming_pb2.LidarStreamingRequest, _Mapping]] = ...) -> None: ...
+    mount: _containers.RepeatedScalarFieldContainer[float]
+    def __init__(self, sensor: _Optional[str] = ..., time: _Optional[float] = ..., navigation: _Optional[_Union[State, _Mapping]] = ..., truth: _Optional[_Union[TruthFrame, _Mapping]] = ..., lidar: _Optional[_Union[_sensor_streaming_pb2.LidarStreamingRequest, _Mapping]] = ..., mount: _Optional[_Iterable[float]] = ...) -> None: ...
 
 class Step(_message.Message):
     __slots__ = ("index", "time", "own", "navigation", "frames")
