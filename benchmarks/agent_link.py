@@ -4,9 +4,12 @@ The agent is docs/examples/agents/grpc_agent.py (ground truth in, a set-point ou
 hundred floating-point operations, so what is measured is the transport). Each run is made twice, ``--steps`` steps
 and ``--short`` steps, and the difference is divided by the difference in steps, so the start-up (launching Python,
 importing grpc, the server) is not counted; the same for the same policy in process (the test's ``InProcessTwin``).
-Prints JSON on its last line.
+``--agent reference-lidar``: seatwin's reference agent on simulated lidar instead, hosted in the agent process by
+``seatwin.api.agent_host`` (every sweep crosses the wire as Gemini's ``LidarStreamingRequest``). Prints JSON on its
+last line.
 
     PYTHONPATH=src .venv/bin/python benchmarks/agent_link.py --steps 2000
+    PYTHONPATH=src .venv/bin/python benchmarks/agent_link.py --agent reference-lidar --steps 300
 """
 
 from __future__ import annotations
@@ -23,8 +26,9 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
 sys.path.insert(0, str(ROOT / "tests" / "api"))
 
-from test_agent_link import EXAMPLE, InProcessTwin  # noqa: E402
+from test_agent_link import EXAMPLE, HOST, InProcessTwin  # noqa: E402
 
+from seatwin.agents import make_agent  # noqa: E402
 from seatwin.api.agent_link import RemoteAgent  # noqa: E402
 from seatwin.encounters import encounter_scenario, space  # noqa: E402
 from seatwin.verification import run_closed_loop  # noqa: E402
@@ -35,15 +39,17 @@ def _children_cpu() -> float:
     return r.ru_utime + r.ru_stime
 
 
-def measure(scenario: object, steps: int, mode: str, remote: bool) -> dict[str, float]:
+def measure(scenario: object, steps: int, mode: str, remote: bool, lidar: bool) -> dict[str, float]:
     """Own CPU, the agent process's CPU (its whole life) and wall time of one run of ``steps`` steps."""
     duration = (steps - 1) * 0.1
     c0, k0, w0 = time.process_time(), _children_cpu(), time.perf_counter()
     if remote:
-        with RemoteAgent("bench", command=[sys.executable, str(EXAMPLE), "{address}", "--mode", mode]) as agent:
+        argv = [sys.executable, "-c", HOST, "{address}"] if lidar else [sys.executable, str(EXAMPLE), "{address}", "--mode", mode]
+        with RemoteAgent("bench", ("lidar",) if lidar else ("truth",), command=argv) as agent:
             rec = run_closed_loop(scenario, agent, duration=duration)
     else:
-        rec = run_closed_loop(scenario, InProcessTwin(mode), duration=duration)
+        agent = make_agent("reference", sensors=("lidar",)) if lidar else InProcessTwin(mode)
+        rec = run_closed_loop(scenario, agent, duration=duration)
     assert rec.time.size == steps, (rec.time.size, steps)
     return {"cpu_s": time.process_time() - c0, "agent_cpu_s": _children_cpu() - k0, "wall_s": time.perf_counter() - w0}
 
@@ -53,12 +59,14 @@ def main() -> None:
     ap.add_argument("--steps", type=int, default=2000)
     ap.add_argument("--short", type=int, default=20)
     ap.add_argument("--mode", default="velocity")
+    ap.add_argument("--agent", choices=("example", "reference-lidar"), default="example")
     a = ap.parse_args()
+    lidar = a.agent == "reference-lidar"
     sp = space("head_on", tcpa=(150.0, 150.0), run_out=60.0)
     scenario = encounter_scenario(sp.encounter([0.5] * sp.dimension), "bench", "none", 1)[0]
-    out: dict[str, object] = {"steps": a.steps, "short": a.short, "mode": a.mode}
+    out: dict[str, object] = {"steps": a.steps, "short": a.short, "agent": a.agent, "mode": None if lidar else a.mode}
     for remote in (False, True):
-        long, short = measure(scenario, a.steps, a.mode, remote), measure(scenario, a.short, a.mode, remote)
+        long, short = (measure(scenario, n, a.mode, remote, lidar) for n in (a.steps, a.short))
         n = a.steps - a.short
         per = {f"{k}_per_step_ms": 1000 * (long[k] - short[k]) / n for k in long}
         out["grpc" if remote else "in_process"] = {**per, "long": long, "short": short}
