@@ -61,7 +61,7 @@ def test_a_grpc_agent_beside_the_in_process_ones(tmp_path, capsys):
     launch = f"[{json.dumps(sys.executable)}, {json.dumps(str(example))}, '{{address}}'"
     spec.write_text(
         "agents:\n  - perfect\n"
-        f"  - {{kind: grpc, name: external, command: {launch}]}}\n"
+        f"  - {{kind: grpc, name: external, command: ['{{python}}', {json.dumps(str(example))}, '{{address}}']}}\n"
         f"  - {{kind: grpc, name: dying, command: {launch}, --die-at, '3'], timeout_s: 10}}\n"
         "families: [head_on]\nencounters: 1\ntcpa: [30, 30]\nrun_out: 10\nworst: 0\n"
     )
@@ -88,3 +88,14 @@ def test_bad_grpc_agents_are_named(tmp_path):
     p.write_text("agents:\n  - {kind: grpc, name: x, address: 'localhost:5', sensors: [radar]}\n")
     with pytest.raises(InputError, match="sensors"):
         load_verify_spec(p)
+
+
+def test_the_shipped_grpc_example_spec_is_valid_and_its_agent_is_beside_it():
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[2] / "docs" / "examples" / "agents" / "verify_grpc.yaml"
+    spec = load_verify_spec(path)
+    assert spec.agent_names == ("perfect", "example")
+    ext = spec.agents[1]
+    assert ext.command[0] == "{python}" and "{address}" in ext.command
+    assert (path.parent / ext.command[1]).is_file()

@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 import os
 import subprocess
+import sys
 import tempfile
 import threading
 import time
@@ -153,7 +154,8 @@ class RemoteAgent:
 
     ``address``: where seatwin listens (``HOST:PORT``; port 0 picks a free one). ``command``: the agent's command
     line, launched now, with ``{address}`` replaced by the bound address (also in its environment as
-    ``SEATWIN_AGENT_ADDRESS``); without it the agent is started by someone else and connects to ``address``.
+    ``SEATWIN_AGENT_ADDRESS``) and ``{python}`` by this Python interpreter; without it the agent is started by
+    someone else and connects to ``address``.
     ``sensors``: the frames it is sent (:data:`SENSORS`); ``vessel``: the ownship's name Gemini's ``ApplyForce``
     must give. Use it as a context manager (or call :meth:`close`)."""
 
@@ -188,7 +190,7 @@ class RemoteAgent:
         self._process: subprocess.Popen[bytes] | None = None
         self._log: Any = None
         if command is not None:
-            self._launch([str(c).replace("{address}", self.address) for c in command], cwd)
+            self._launch([str(c).replace("{address}", self.address).replace("{python}", sys.executable) for c in command], cwd)
 
     def _launch(self, argv: list[str], cwd: str | os.PathLike[str] | None) -> None:
         if not argv:
