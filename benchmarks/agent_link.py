@@ -44,7 +44,8 @@ def measure(scenario: object, steps: int, mode: str, remote: bool, lidar: bool) 
     duration = (steps - 1) * 0.1
     c0, k0, w0 = time.process_time(), _children_cpu(), time.perf_counter()
     if remote:
-        argv = [sys.executable, "-c", HOST, "{address}"] if lidar else [sys.executable, str(EXAMPLE), "{address}", "--mode", mode]
+        example = [sys.executable, str(EXAMPLE), "{address}", "--mode", mode]
+        argv = [sys.executable, "-c", HOST, "{address}", "lidar"] if lidar else example
         with RemoteAgent("bench", ("lidar",) if lidar else ("truth",), command=argv) as agent:
             rec = run_closed_loop(scenario, agent, duration=duration)
     else:

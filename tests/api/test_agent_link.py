@@ -134,7 +134,7 @@ def test_a_hanging_agent_times_out(scenario):
 
 def test_an_agent_that_never_connects_times_out(scenario):
     never = r"agent 'absent' at 127\.0\.0\.1:\d+ failed at step 0 .*within 0\.3 s"
-    with RemoteAgent("absent", timeout_s=0.3) as agent, pytest.raises(ParameterError, match=never):
+    with RemoteAgent("absent", startup_timeout_s=0.3) as agent, pytest.raises(ParameterError, match=never):
         run_closed_loop(scenario, agent, duration=1.0)
 
 
@@ -182,7 +182,7 @@ def test_bad_commands_are_refused_and_change_nothing():
 
 def test_bad_parameters_are_named():
     with pytest.raises(ParameterError, match="sensors"):
-        RemoteAgent(sensors=("radar",))
+        RemoteAgent(sensors=("camera",))
     with pytest.raises(ParameterError, match="HOST:PORT"):
         RemoteAgent(address="nowhere")
     with pytest.raises(ParameterError, match="cannot start the agent"):
@@ -191,21 +191,24 @@ def test_bad_parameters_are_named():
 
 HOST = (
     "import sys; from seatwin.agents import make_agent; from seatwin.api.agent_host import host_agent; "
-    "sys.exit(0 if host_agent(make_agent('reference', sensors=('lidar',)), sys.argv[1]) > 0 else 1)"
+    "sys.exit(0 if host_agent(make_agent('reference', sensors=tuple(sys.argv[2:])), sys.argv[1]) > 0 else 1)"
 )
+"""``python -c HOST ADDRESS SENSOR...``: seatwin's reference agent on those sensors, hosted in its own process."""
 
 
-def test_the_reference_agent_on_lidar_is_bit_identical_hosted_in_another_process(scenario):
-    """seatwin's own agent (lidar clustering + JIPDA + velocity obstacles) in another process: lidar sweeps (float32
-    columns in Gemini's message), their mounts and the navigation cross the wire without a bit lost."""
+def test_the_reference_agent_on_lidar_and_radar_is_bit_identical_hosted_in_another_process(scenario):
+    """seatwin's own agent (lidar clustering, radar plots, one JIPDA per sensor, velocity obstacles) in another
+    process: lidar sweeps (float32 columns in Gemini's message), their mounts, radar plots and the navigation cross
+    the wire without a bit lost."""
     from seatwin.agents import make_agent
 
-    local = run_closed_loop(scenario, make_agent("reference", sensors=("lidar",)), duration=6.0)
-    with RemoteAgent("reference", ("lidar",), command=[sys.executable, "-c", HOST, "{address}"]) as agent:
+    sensors = ("lidar", "radar")
+    local = run_closed_loop(scenario, make_agent("reference", sensors=sensors), duration=6.0)
+    with RemoteAgent("reference", sensors, command=[sys.executable, "-c", HOST, "{address}", *sensors]) as agent:
         remote = run_closed_loop(scenario, agent, duration=6.0)
         assert agent.close() == 0
-    assert remote.frames["lidar"] == local.frames["lidar"] > 40
-    assert local.n_tracks.max() >= 1  # it tracked the target from the lidar: the sweeps carried information
+    assert remote.frames == local.frames and local.frames["lidar"] > 40 and local.frames["radar"] >= 1
+    assert local.n_tracks.max() >= 1  # it tracked the target: the frames carried information
     _same(local, remote)
 
 
@@ -219,3 +222,6 @@ def test_hostile_frames_are_named():
         frames_of(bad_mount, {})
     with pytest.raises(InputError, match="no data"):
         frames_of(pb.Step(frames=[pb.Frame(sensor="lidar")]), {})
+    short = pb.RadarPlots(range=[1.0, 2.0], azimuth=[0.0], north=[0.0], east=[0.0], cells=[1], extent=[1.0])
+    with pytest.raises(InputError, match="RadarPlots"):
+        frames_of(pb.Step(frames=[pb.Frame(sensor="radar", radar=short)]), {})

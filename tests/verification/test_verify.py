@@ -85,7 +85,7 @@ def test_bad_grpc_agents_are_named(tmp_path):
     p.write_text("agents:\n  - perfect\n  - {kind: grpc, name: perfect, address: 'localhost:5'}\n")
     with pytest.raises(InputError, match="unique"):
         load_verify_spec(p)
-    p.write_text("agents:\n  - {kind: grpc, name: x, address: 'localhost:5', sensors: [radar]}\n")
+    p.write_text("agents:\n  - {kind: grpc, name: x, address: 'localhost:5', sensors: [camera]}\n")
     with pytest.raises(InputError, match="sensors"):
         load_verify_spec(p)
 

@@ -6,7 +6,8 @@ same agent object sails the same runs in process or from another process (or mac
 Decoding: a ``Mission`` → :class:`~seatwin.agents.Mission`; a ``State`` → :class:`~seatwin.agents.Navigation`; a
 truth frame → :class:`~seatwin.agents.TruthTarget` tuples; a lidar frame's ``LidarStreamingRequest`` →
 :class:`~seatwin.sensors.lidar.LidarSweep` (its float32 columns as sent; ``stamp`` the frame's time, ``frame`` its count
-in the run, ``object_id`` −1: ground truth does not cross the wire), with its ``mount``. A command goes back as
+in the run, ``object_id`` −1: ground truth does not cross the wire), with its ``mount``; a radar frame's plots →
+:class:`~seatwin.sensors.radar.model.RadarScan` (``object_id`` and ``kind`` −1, no spokes). A command goes back as
 ``SetVelocity``, ``ApplyForce`` (doubles) or ``ApplyThrust``, with the agent's ``tracks()``.
 """
 
@@ -74,6 +75,21 @@ def _sweep(r: Any, count: int) -> Any:
     )
 
 
+def _plots(t: float, r: Any, count: int) -> Any:
+    from seatwin.sensors.radar.geometry import AntennaPose
+    from seatwin.sensors.radar.model import RadarScan
+
+    cols = [np.asarray(c, dtype=float) for c in (r.range, r.azimuth, r.north, r.east, r.extent)]
+    cells = np.asarray(r.cells, dtype=np.int64)
+    n = cells.size
+    if any(c.size != n for c in cols) or len(r.intensity) not in (0, n):
+        expected = "one range, azimuth, north, east, cells, extent (and intensity) a plot"
+        raise InputError("RadarPlots", f"expected {expected}; the columns' lengths differ from {n} cells")
+    antenna = AntennaPose(r.antenna_north, r.antenna_east, r.antenna_heading, r.antenna_height)
+    unknown = np.full(n, -1, np.int64)
+    return RadarScan(t, count, antenna, *cols[:4], cells, cols[4], unknown, unknown.copy(), np.asarray(r.intensity, float))
+
+
 def frames_of(step: Any, counts: dict[str, int]) -> list[SensorFrame]:
     """A ``Step``'s frames as the interface's :class:`SensorFrame` (``counts``: lidar sweeps so far, updated)."""
     out = []
@@ -84,9 +100,10 @@ def frames_of(step: Any, counts: dict[str, int]) -> list[SensorFrame]:
             data: Any = tuple(
                 TruthTarget(t.name, t.north, t.east, t.v_north, t.v_east, t.length, t.beam) for t in f.truth.targets
             )
-        elif kind == "lidar":
-            data = _sweep(f.lidar, counts.get("lidar", 0))
-            counts["lidar"] = counts.get("lidar", 0) + 1
+        elif kind in ("lidar", "radar"):
+            n = counts.get(kind, 0)
+            data = _sweep(f.lidar, n) if kind == "lidar" else _plots(f.time, f.radar, n)
+            counts[kind] = n + 1
         else:
             raise InputError("Frame", f"frame {f.sensor!r} at t = {f.time} carries no data")
         out.append(SensorFrame(f.sensor, f.time, data, nav, _mount(f)))

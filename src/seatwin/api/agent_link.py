@@ -5,11 +5,12 @@ seatwin serves (``agent_link.proto``'s ``seatwin.agentlink.AgentLink`` and Gemin
 :class:`~seatwin.agents.Agent` shape, so :func:`seatwin.verification.run_closed_loop` drives it like an agent in
 process: ``reset(mission)`` queues a ``Mission``; ``step(t, frames, navigation)`` queues a ``Step`` (its own state in
 doubles, Gemini's ``NavigationRequest`` of it, the frames: truth targets in doubles, lidar sweeps as Gemini's
-``LidarStreamingRequest``) and waits for the agent's one command for that step (``SetVelocity``, ``ApplyForce`` in
-doubles, Gemini's ``ApplyForce`` in floats, ``ApplyThrust``). The agent fetches each queued observation with
-``Observe`` (answered as soon as there is one). A slow agent slows the loop; an agent that does not answer within
-``timeout_s``, or whose launched process exits, is one :class:`~seatwin.errors.ParameterError` naming the agent,
-step and cause. :meth:`RemoteAgent.close` sends ``Finished``, stops the server and ends a launched process.
+``LidarStreamingRequest``, radar plots in doubles) and waits for the agent's one command for that step
+(``SetVelocity``, ``ApplyForce`` in doubles, Gemini's ``ApplyForce`` in floats, ``ApplyThrust``). The agent fetches
+each queued observation with ``Observe`` (answered as soon as there is one). A slow agent slows the loop; an agent
+that does not answer within ``timeout_s``, or whose launched process exits, is one
+:class:`~seatwin.errors.ParameterError` naming the agent, step and cause. :meth:`RemoteAgent.close` sends
+``Finished``, stops the server and ends a launched process.
 """
 
 from __future__ import annotations
@@ -45,11 +46,14 @@ from seatwin.api.server import bind
 from seatwin.api.streaming import lidar_request, navigation_request
 from seatwin.errors import ParameterError
 
-SENSORS = ("truth", "lidar")
-"""The frames the transport carries (radar rotations are not sent over it yet)."""
+SENSORS = ("truth", "lidar", "radar")
+"""The frames the transport carries."""
 
 TIMEOUT_S = 30.0
-"""How long a step waits for the agent's command (the first one includes the agent's start-up)."""
+"""How long a step waits for the agent's command."""
+
+STARTUP_TIMEOUT_S = 60.0
+"""How long a run's first step waits (the agent's start-up, its reading of the mission)."""
 
 POLL_S = 0.05
 """How often a waiting step looks whether a launched agent process has exited."""
@@ -80,6 +84,24 @@ def _frame(frame: SensorFrame) -> Any:
         )
     elif frame.sensor == "lidar":
         out.lidar.CopyFrom(lidar_request("lidar", frame.time, frame.data))
+    elif frame.sensor == "radar":
+        r = frame.data
+        a = r.antenna
+        out.radar.CopyFrom(
+            pb.RadarPlots(
+                antenna_north=a.north,
+                antenna_east=a.east,
+                antenna_heading=a.heading,
+                antenna_height=a.height,
+                range=r.range_m,
+                azimuth=r.azimuth,
+                north=r.north,
+                east=r.east,
+                cells=r.n_cells,
+                extent=r.extent_m,
+                intensity=r.intensity,
+            )
+        )
     else:
         raise ParameterError("sensors", f"the gRPC agent transport carries {', '.join(SENSORS)} frames, not {frame.sensor!r}")
     return out
@@ -156,6 +178,7 @@ class RemoteAgent:
     line, launched now, with ``{address}`` replaced by the bound address (also in its environment as
     ``SEATWIN_AGENT_ADDRESS``) and ``{python}`` by this Python interpreter; without it the agent is started by
     someone else and connects to ``address``.
+    ``timeout_s``: how long a step waits for its command, ``startup_timeout_s`` a run's first step.
     ``sensors``: the frames it is sent (:data:`SENSORS`); ``vessel``: the ownship's name Gemini's ``ApplyForce``
     must give. Use it as a context manager (or call :meth:`close`)."""
 
@@ -167,18 +190,21 @@ class RemoteAgent:
         address: str = "127.0.0.1:0",
         command: Sequence[str] | None = None,
         timeout_s: float = TIMEOUT_S,
+        startup_timeout_s: float = STARTUP_TIMEOUT_S,
         vessel: str = "milliAmpere",
         cwd: str | os.PathLike[str] | None = None,
     ):
         bad = [s for s in sensors if s not in SENSORS]
         if bad or not sensors:
             raise ParameterError("sensors", f"the gRPC agent transport carries some of {', '.join(SENSORS)}, not {list(sensors)}")
-        if not (timeout_s > 0 and math.isfinite(timeout_s)):
-            raise ParameterError("timeout_s", f"expected a timeout > 0 s, got {timeout_s!r}")
+        for param, value in (("timeout_s", timeout_s), ("startup_timeout_s", startup_timeout_s)):
+            if not (value > 0 and math.isfinite(value)):
+                raise ParameterError(param, f"expected a timeout > 0 s, got {value!r}")
         host, sep, port = address.rpartition(":")
         if not sep or not host or not port.isdigit():
             raise ParameterError("address", f"expected HOST:PORT to listen on, got {address!r}")
         self.name, self.sensors, self.timeout_s = name, tuple(sensors), float(timeout_s)
+        self.startup_timeout_s = float(startup_timeout_s)
         self._link = _Link(vessel)
         self._server = grpc.server(futures.ThreadPoolExecutor(max_workers=4, thread_name_prefix="seatwin-agent"))
         agent_link_pb2_grpc.add_AgentLinkServicer_to_server(self._link, self._server)
@@ -246,7 +272,8 @@ class RemoteAgent:
                 frames=[_frame(f) for f in frames],
             )
         )
-        deadline = time.monotonic() + self.timeout_s
+        limit = self.startup_timeout_s if k == 0 else self.timeout_s
+        deadline = time.monotonic() + limit
         with link.cond:
             link.pending, link.command = k, None
             link.outbox.append(obs)
@@ -255,7 +282,7 @@ class RemoteAgent:
                 why = self._exited()
                 left = deadline - time.monotonic()
                 if why is None and left <= 0:
-                    why = f"it did not answer within {self.timeout_s:g} s"
+                    why = f"it did not answer within {limit:g} s"
                 if why is not None:
                     link.pending = None
                     raise ParameterError("agent", f"{self._where()} failed at step {k} (t = {time_s:.3f} s): {why}")

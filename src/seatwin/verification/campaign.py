@@ -95,6 +95,7 @@ def _run(params: dict[str, Any]) -> tuple[Any, Any, Any]:
             address=remote["address"] or "127.0.0.1:0",
             command=remote["command"],
             timeout_s=remote["timeout_s"],
+            startup_timeout_s=remote["startup_timeout_s"],
             vessel=scenario.ownship.name,
             cwd=remote["cwd"],
         ) as agent:

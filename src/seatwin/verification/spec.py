@@ -35,8 +35,11 @@ class GrpcAgent(Settings):
     name: str = Field(..., min_length=1, pattern=r"^[A-Za-z0-9_.-]+$", description="The agent's name in the results.")
     command: tuple[str, ...] | None = Field(None, min_length=1, description="The agent's command line, launched per run.")
     address: str | None = Field(None, description="HOST:PORT seatwin listens on for an agent started separately.")
-    sensors: tuple[Literal["truth", "lidar"], ...] = Field(("truth",), min_length=1, description="The frames it is sent.")
+    sensors: tuple[Literal["truth", "lidar", "radar"], ...] = Field(
+        ("truth",), min_length=1, description="The frames it is sent."
+    )
     timeout_s: float = Field(30.0, gt=0, description="How long a step waits for its command before the run fails.")
+    startup_timeout_s: float = Field(60.0, gt=0, description="How long a run's first step waits (the agent's start-up).")
 
     @model_validator(mode="after")
     def _one_way(self) -> GrpcAgent:

@@ -91,20 +91,48 @@ class TruthFrame(_message.Message):
     def __init__(self, targets: _Optional[_Iterable[_Union[Target, _Mapping]]] = ...) -> None: ...
 
 class Frame(_message.Message):
-    __slots__ = ("sensor", "time", "navigation", "truth", "lidar", "mount")
+    __slots__ = ("sensor", "time", "navigation", "truth", "lidar", "radar", "mount")
     SENSOR_FIELD_NUMBER: _ClassVar[int]
     TIME_FIELD_NUMBER: _ClassVar[int]
     NAVIGATION_FIELD_NUMBER: _ClassVar[int]
     TRUTH_FIELD_NUMBER: _ClassVar[int]
     LIDAR_FIELD_NUMBER: _ClassVar[int]
+    RADAR_FIELD_NUMBER: _ClassVar[int]
     MOUNT_FIELD_NUMBER: _ClassVar[int]
     sensor: str
     time: float
     navigation: State
     truth: TruthFrame
     lidar: _sensor_streaming_pb2.LidarStreamingRequest
+    radar: RadarPlots
     mount: _containers.RepeatedScalarFieldContainer[float]
-    def __init__(self, sensor: _Optional[str] = ..., time: _Optional[float] = ..., navigation: _Optional[_Union[State, _Mapping]] = ..., truth: _Optional[_Union[TruthFrame, _Mapping]] = ..., lidar: _Optional[_Union[_sensor_streaming_pb2.LidarStreamingRequest, _Mapping]] = ..., mount: _Optional[_Iterable[float]] = ...) -> None: ...
+    def __init__(self, sensor: _Optional[str] = ..., time: _Optional[float] = ..., navigation: _Optional[_Union[State, _Mapping]] = ..., truth: _Optional[_Union[TruthFrame, _Mapping]] = ..., lidar: _Optional[_Union[_sensor_streaming_pb2.LidarStreamingRequest, _Mapping]] = ..., radar: _Optional[_Union[RadarPlots, _Mapping]] = ..., mount: _Optional[_Iterable[float]] = ...) -> None: ...
+
+class RadarPlots(_message.Message):
+    __slots__ = ("antenna_north", "antenna_east", "antenna_heading", "antenna_height", "range", "azimuth", "north", "east", "cells", "extent", "intensity")
+    ANTENNA_NORTH_FIELD_NUMBER: _ClassVar[int]
+    ANTENNA_EAST_FIELD_NUMBER: _ClassVar[int]
+    ANTENNA_HEADING_FIELD_NUMBER: _ClassVar[int]
+    ANTENNA_HEIGHT_FIELD_NUMBER: _ClassVar[int]
+    RANGE_FIELD_NUMBER: _ClassVar[int]
+    AZIMUTH_FIELD_NUMBER: _ClassVar[int]
+    NORTH_FIELD_NUMBER: _ClassVar[int]
+    EAST_FIELD_NUMBER: _ClassVar[int]
+    CELLS_FIELD_NUMBER: _ClassVar[int]
+    EXTENT_FIELD_NUMBER: _ClassVar[int]
+    INTENSITY_FIELD_NUMBER: _ClassVar[int]
+    antenna_north: float
+    antenna_east: float
+    antenna_heading: float
+    antenna_height: float
+    range: _containers.RepeatedScalarFieldContainer[float]
+    azimuth: _containers.RepeatedScalarFieldContainer[float]
+    north: _containers.RepeatedScalarFieldContainer[float]
+    east: _containers.RepeatedScalarFieldContainer[float]
+    cells: _containers.RepeatedScalarFieldContainer[int]
+    extent: _containers.RepeatedScalarFieldContainer[float]
+    intensity: _containers.RepeatedScalarFieldContainer[float]
+    def __init__(self, antenna_north: _Optional[float] = ..., antenna_east: _Optional[float] = ..., antenna_heading: _Optional[float] = ..., antenna_height: _Optional[float] = ..., range: _Optional[_Iterable[float]] = ..., azimuth: _Optional[_Iterable[float]] = ..., north: _Optional[_Iterable[float]] = ..., east: _Optional[_Iterable[float]] = ..., cells: _Optional[_Iterable[int]] = ..., extent: _Optional[_Iterable[float]] = ..., intensity: _Optional[_Iterable[float]] = ...) -> None: ...
 
 class Step(_message.Message):
     __slots__ = ("index", "time", "own", "navigation", "frames")
