@@ -138,6 +138,28 @@ def test_an_agent_that_never_connects_times_out(scenario):
         run_closed_loop(scenario, agent, duration=1.0)
 
 
+def test_an_agent_started_separately_serves_run_after_run(scenario):
+    """``address`` mode: the agent runs on its own (``--keep``) and each run's server comes up at the same address."""
+    import socket
+    import subprocess
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        address = f"127.0.0.1:{s.getsockname()[1]}"
+    proc = subprocess.Popen([sys.executable, str(EXAMPLE), address, "--keep"], stderr=subprocess.PIPE)
+    try:
+        runs = []
+        for _ in range(2):
+            with RemoteAgent("kept", address=address) as agent:
+                runs.append(run_closed_loop(scenario, agent, duration=2.0))
+        assert proc.poll() is None  # still there for the next simulation
+    finally:
+        proc.kill()
+        proc.wait()
+    _same(runs[0], runs[1])
+    _same(runs[0], run_closed_loop(scenario, InProcessTwin("velocity"), duration=2.0))
+
+
 def test_bad_commands_are_refused_and_change_nothing():
     from seatwin.agents import Navigation
     from seatwin.api.proto import agent_link_pb2 as pb

@@ -97,6 +97,7 @@ def main(argv: list[str] | None = None) -> int:
         what = obs.WhichOneof("what")
         if what == "finished":
             if args.keep:
+                time.sleep(0.2)  # the simulation's server is going away; the next one comes at the same address
                 continue
             return 0
         if what == "mission":

@@ -13,6 +13,7 @@ in the run, ``object_id`` −1: ground truth does not cross the wire), with its 
 
 from __future__ import annotations
 
+import time
 from typing import Any
 
 import numpy as np
@@ -31,6 +32,9 @@ from seatwin.api.proto import agent_link_pb2, agent_link_pb2_grpc
 from seatwin.errors import InputError, ParameterError
 from seatwin.perception.frames import Mount
 from seatwin.recording.pointcloud import unpack
+
+KEEP_PAUSE_S = 0.2
+"""With ``keep``: the pause after a simulation ends before observing the next one (its server is going away)."""
 
 
 def mission_of(m: Any) -> Mission:
@@ -127,6 +131,7 @@ def host_agent(agent: Agent, address: str, *, keep: bool = False) -> int:
             what = obs.WhichOneof("what")
             if what == "finished":
                 if keep:
+                    time.sleep(KEEP_PAUSE_S)
                     continue
                 return answered
             if what == "mission":
