@@ -15,6 +15,8 @@ from pathlib import Path
 import grpc
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, example, given, settings
+from hypothesis import strategies as st
 
 from seatwin.agents import ForceCommand, SetPoint, ThrusterCommand, TrackEstimate
 from seatwin.api.agent_link import RemoteAgent
@@ -247,3 +249,43 @@ def test_hostile_frames_are_named():
     short = pb.RadarPlots(range=[1.0, 2.0], azimuth=[0.0], north=[0.0], east=[0.0], cells=[1], extent=[1.0])
     with pytest.raises(InputError, match="RadarPlots"):
         frames_of(pb.Step(frames=[pb.Frame(sensor="radar", radar=short)]), {})
+
+
+_WIRE_SETTINGS = {"deadline": None, "suppress_health_check": list(HealthCheck), "derandomize": True}
+
+
+@settings(max_examples=60, **_WIRE_SETTINGS)
+@given(
+    width=st.integers(0, 40),
+    height=st.integers(0, 3),
+    point_step=st.integers(0, 40),
+    row_step=st.integers(0, 400),
+    data=st.binary(max_size=600),
+    fields=st.lists(
+        st.tuples(st.sampled_from(["x", "y", "z", "intensity", "ring", "time", "", "q"]), st.integers(-2, 40), st.integers(0, 9)),
+        max_size=7,
+    ),
+    big_endian=st.booleans(),
+)
+@example(2, 1, 12, 0, bytes(range(24)), [("x", 0, 7), ("y", 4, 7), ("z", 8, 7)], False)  # a valid one decodes
+def test_any_lidar_message_decodes_or_is_one_input_error(width, height, point_step, row_step, data, fields, big_endian):
+    """The agent side reads hostile ``LidarStreamingRequest``s: a sweep, or an InputError — nothing else escapes."""
+    from seatwin.api.agent_host import frames_of
+    from seatwin.api.proto import agent_link_pb2 as pb
+    from seatwin.api.proto import sensor_streaming_pb2 as s
+    from seatwin.errors import InputError
+
+    req = s.LidarStreamingRequest(
+        width=width,
+        height=height,
+        point_step=point_step,
+        row_step=row_step,
+        data=data,
+        isBigEndian=big_endian,
+        fields=[s.PointField(name=n, offset=max(o, 0), datatype=d, count=1) for n, o, d in fields],
+    )
+    try:
+        (frame,) = frames_of(pb.Step(frames=[pb.Frame(sensor="lidar", time=1.0, lidar=req)]), {})
+    except InputError:
+        return
+    assert len(frame.data.x) == len(frame.data.y) == len(frame.data.z) == width * height

@@ -29,7 +29,7 @@ class GrpcAgent(Settings):
     """An agent in another process, driven over gRPC (:class:`seatwin.api.agent_link.RemoteAgent`): seatwin listens
     and the agent connects — either launched per run from ``command`` (``{address}`` replaced by the address seatwin
     listens on; run in the spec file's folder), or already running and connecting to ``address`` (then one run at a
-    time: ``--workers 0`` or 1)."""
+    time: a single worker)."""
 
     kind: Literal["grpc"]
     name: str = Field(..., min_length=1, pattern=r"^[A-Za-z0-9_.-]+$", description="The agent's name in the results.")
