@@ -4,9 +4,10 @@ The agent is docs/examples/agents/grpc_agent.py (ground truth in, a set-point ou
 hundred floating-point operations, so what is measured is the transport). Each run is made twice, ``--steps`` steps
 and ``--short`` steps, and the difference is divided by the difference in steps, so the start-up (launching Python,
 importing grpc, the server) is not counted; the same for the same policy in process (the test's ``InProcessTwin``).
-``--agent reference-lidar``: seatwin's reference agent on simulated lidar instead, hosted in the agent process by
-``seatwin.api.agent_host`` (every sweep crosses the wire as Gemini's ``LidarStreamingRequest``). Prints JSON on its
-last line.
+``--one-call``: the example agent sends each command with ``Act`` (answered with the next observation: one call a
+step). ``--agent reference-lidar``: seatwin's reference agent on simulated lidar instead, hosted in the agent process
+by ``seatwin.api.agent_host`` (one call a step; every sweep crosses the wire as Gemini's ``LidarStreamingRequest``).
+Prints JSON on its last line.
 
     PYTHONPATH=src .venv/bin/python benchmarks/agent_link.py --steps 2000
     PYTHONPATH=src .venv/bin/python benchmarks/agent_link.py --agent reference-lidar --steps 300
@@ -39,12 +40,12 @@ def _children_cpu() -> float:
     return r.ru_utime + r.ru_stime
 
 
-def measure(scenario: object, steps: int, mode: str, remote: bool, lidar: bool) -> dict[str, float]:
+def measure(scenario: object, steps: int, mode: str, remote: bool, lidar: bool, one_call: bool) -> dict[str, float]:
     """Own CPU, the agent process's CPU (its whole life) and wall time of one run of ``steps`` steps."""
     duration = (steps - 1) * 0.1
     c0, k0, w0 = time.process_time(), _children_cpu(), time.perf_counter()
     if remote:
-        example = [sys.executable, str(EXAMPLE), "{address}", "--mode", mode]
+        example = [sys.executable, str(EXAMPLE), "{address}", "--mode", mode, *(["--one-call"] if one_call else [])]
         argv = [sys.executable, "-c", HOST, "{address}", "lidar"] if lidar else example
         with RemoteAgent("bench", ("lidar",) if lidar else ("truth",), command=argv) as agent:
             rec = run_closed_loop(scenario, agent, duration=duration)
@@ -61,13 +62,15 @@ def main() -> None:
     ap.add_argument("--short", type=int, default=20)
     ap.add_argument("--mode", default="velocity")
     ap.add_argument("--agent", choices=("example", "reference-lidar"), default="example")
+    ap.add_argument("--one-call", action="store_true", help="the example agent sends its commands with Act")
     a = ap.parse_args()
     lidar = a.agent == "reference-lidar"
     sp = space("head_on", tcpa=(150.0, 150.0), run_out=60.0)
     scenario = encounter_scenario(sp.encounter([0.5] * sp.dimension), "bench", "none", 1)[0]
-    out: dict[str, object] = {"steps": a.steps, "short": a.short, "agent": a.agent, "mode": None if lidar else a.mode}
+    out: dict[str, object] = {"steps": a.steps, "short": a.short, "agent": a.agent}
+    out |= {"mode": None if lidar else a.mode, "one_call": a.one_call or lidar}
     for remote in (False, True):
-        long, short = (measure(scenario, n, a.mode, remote, lidar) for n in (a.steps, a.short))
+        long, short = (measure(scenario, n, a.mode, remote, lidar, a.one_call) for n in (a.steps, a.short))
         n = a.steps - a.short
         per = {f"{k}_per_step_ms": 1000 * (long[k] - short[k]) / n for k in long}
         out["grpc" if remote else "in_process"] = {**per, "long": long, "short": short}

@@ -100,10 +100,12 @@ def test_the_example_agent_imports_only_the_protos_and_grpc():
     assert names <= {"__future__", "argparse", "math", "os", "sys", "time", "grpc", "seatwin.api.proto"}
 
 
-@pytest.mark.parametrize("mode", ["velocity", "force", "gemini-force", "thrust"])
-def test_an_agent_over_grpc_is_bit_identical_to_it_in_process(scenario, mode):
+@pytest.mark.parametrize(
+    "mode, calls", [("velocity", ()), ("force", ()), ("gemini-force", ()), ("thrust", ()), ("velocity", ("--one-call",))]
+)
+def test_an_agent_over_grpc_is_bit_identical_to_it_in_process(scenario, mode, calls):
     local = run_closed_loop(scenario, InProcessTwin(mode), duration=12.0)
-    with _remote("--mode", mode) as agent:
+    with _remote("--mode", mode, *calls) as agent:
         remote = run_closed_loop(scenario, agent, duration=12.0)
     _same(local, remote)
     assert np.isfinite(remote.command[:-1]).all() and remote.command.shape[0] == 121
@@ -183,6 +185,8 @@ def test_bad_commands_are_refused_and_change_nothing():
             (lambda: link.SetVelocity(pb.VelocityRequest(step=1, speed=1.0), timeout=5), "FAILED_PRECONDITION", "names step 1"),
             (lambda: link.ApplyForce(pb.ForceRequest(step=0, x=float("nan")), timeout=5), "INVALID_ARGUMENT", "non-finite"),
             (lambda: link.ApplyThrust(pb.ThrustRequest(step=0, angles=[0.0]), timeout=5), "INVALID_ARGUMENT", "as many thrusts"),
+            (lambda: link.Act(pb.Action(), timeout=5), "INVALID_ARGUMENT", "needs a command"),
+            (lambda: link.Act(pb.Action(force=pb.ForceRequest(step=3)), timeout=5), "FAILED_PRECONDITION", "names step 3"),
             (
                 lambda: gemini.ApplyForce(force_control_pb2.ForceRequest(vesselId="other"), timeout=5),
                 "NOT_FOUND",

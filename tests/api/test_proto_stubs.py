@@ -172,7 +172,7 @@ def test_seatwins_agent_link_carries_doubles():
     from seatwin.api.proto import agent_link_pb2 as a
 
     assert a.DESCRIPTOR.package == "seatwin.agentlink" and a.DESCRIPTOR.name in SEATWINS
-    for msg in (a.Mission, a.State, a.Target, a.VelocityRequest, a.ForceRequest, a.ThrustRequest, a.Track):
+    for msg in (a.Mission, a.State, a.Target, a.VelocityRequest, a.ForceRequest, a.ThrustRequest, a.Track, a.RadarPlots):
         for f in msg.DESCRIPTOR.fields:
             assert f.type not in (FieldDescriptor.TYPE_FLOAT,), f"{msg.DESCRIPTOR.name}.{f.name} is a float"
     assert _fields(a.Step)[3] == ("navigation", 4, "NavigationRequest", False)
@@ -181,4 +181,5 @@ def test_seatwins_agent_link_carries_doubles():
         "SetVelocity",
         "ApplyForce",
         "ApplyThrust",
+        "Act",
     ]

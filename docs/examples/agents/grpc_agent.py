@@ -6,12 +6,13 @@ navigation, the true targets), and it answers every step with one command before
 (:func:`decide`) is line-of-sight guidance to the goal with a 40° turn to starboard while a target's closest approach
 is nearer than 25 m within 60 s — deliberately simple; the point is the transport.
 
-    python docs/examples/agents/grpc_agent.py HOST:PORT [--mode velocity|force|gemini-force|thrust] [--keep]
+    python docs/examples/agents/grpc_agent.py HOST:PORT [--mode velocity|force|gemini-force|thrust] [--one-call] [--keep]
 
 ``--mode``: a speed/heading set-point (``SetVelocity``), a force in doubles (``ApplyForce``), a force through Gemini's
-``ForceControl.ApplyForce`` (floats), or thruster azimuths and thrusts (``ApplyThrust``). ``--keep``: after the
-simulation ends, wait for the next one at the same address (an agent serving a whole campaign). ``--sleep``,
-``--die-at``, ``--hang-at``: a slow, a crashing and a hanging agent, for tests.
+``ForceControl.ApplyForce`` (floats), or thruster azimuths and thrusts (``ApplyThrust``); ``--one-call``: each command
+sent with ``Act``, whose answer is the next observation (one call a step instead of two; not with Gemini's force).
+``--keep``: after the simulation ends, wait for the next one at the same address (an agent serving a whole campaign).
+``--sleep``, ``--die-at``, ``--hang-at``: a slow, a crashing and a hanging agent, for tests.
 """
 
 from __future__ import annotations
@@ -77,6 +78,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("address", nargs="?", default=os.environ.get("SEATWIN_AGENT_ADDRESS"))
     p.add_argument("--mode", choices=("velocity", "force", "gemini-force", "thrust"), default="velocity")
     p.add_argument("--keep", action="store_true")
+    p.add_argument("--one-call", action="store_true", help="Act: the command and the next observation in one call")
     p.add_argument("--sleep", type=float, default=0.0)
     p.add_argument("--die-at", type=int, default=-1)
     p.add_argument("--hang-at", type=int, default=-1)
@@ -87,23 +89,24 @@ def main(argv: list[str] | None = None) -> int:
     link = agent_link_pb2_grpc.AgentLinkStub(channel)
     gemini = force_control_pb2_grpc.ForceControlStub(channel)
     pb = agent_link_pb2
-    mission = None
+    mission, obs = None, None
     while True:
-        try:
-            obs = link.Observe(pb.ObserveRequest(agent="grpc_agent"), wait_for_ready=True)
-        except grpc.RpcError as exc:
-            print(f"grpc_agent: Observe failed: {exc.code().name}: {exc.details()}", file=sys.stderr)
-            return 1
-        what = obs.WhichOneof("what")
+        if obs is None:  # (with --one-call, Act has brought the next observation already)
+            try:
+                obs = link.Observe(pb.ObserveRequest(agent="grpc_agent"), wait_for_ready=True)
+            except grpc.RpcError as exc:
+                print(f"grpc_agent: Observe failed: {exc.code().name}: {exc.details()}", file=sys.stderr)
+                return 1
+        what, message, obs = obs.WhichOneof("what"), obs, None
         if what == "finished":
             if args.keep:
                 time.sleep(0.2)  # the simulation's server is going away; the next one comes at the same address
                 continue
             return 0
         if what == "mission":
-            mission = obs.mission
+            mission = message.mission
             continue
-        step = obs.step
+        step = message.step
         if step.index == args.die_at:
             print(f"grpc_agent: dying at step {step.index} as told", file=sys.stderr)
             return 3
@@ -116,18 +119,24 @@ def main(argv: list[str] | None = None) -> int:
         tracks = [pb.Track(id=i + 1, north=t[0], east=t[1], v_north=t[2], v_east=t[3]) for i, t in enumerate(targets)]
         own = _own(step.own)
         speed, course = decide((mission.goal_north, mission.goal_east), mission.cruise_speed, own, targets)
-        if args.mode == "velocity":
-            link.SetVelocity(pb.VelocityRequest(step=step.index, speed=speed, heading=course, tracks=tracks))
-        elif args.mode == "force":
-            x, y, n = force(speed, course, own)
-            link.ApplyForce(pb.ForceRequest(step=step.index, x=x, y=y, n=n, tracks=tracks))
-        elif args.mode == "gemini-force":
+        if args.mode == "gemini-force":
             x, y, n = force(speed, course, own)
             tau = force_control_pb2.GeneralizedForce(x=x, y=y, n=n)
             gemini.ApplyForce(force_control_pb2.ForceRequest(vesselId=mission.vessel_id, generalizedForce=tau))
+            continue
+        if args.mode == "velocity":
+            action = pb.Action(velocity=pb.VelocityRequest(step=step.index, speed=speed, heading=course, tracks=tracks))
+        elif args.mode == "force":
+            x, y, n = force(speed, course, own)
+            action = pb.Action(force=pb.ForceRequest(step=step.index, x=x, y=y, n=n, tracks=tracks))
         else:
             angles, thrusts = thrust(speed, course, own)
-            link.ApplyThrust(pb.ThrustRequest(step=step.index, angles=angles, thrusts=thrusts, tracks=tracks))
+            action = pb.Action(thrust=pb.ThrustRequest(step=step.index, angles=angles, thrusts=thrusts, tracks=tracks))
+        kind = action.WhichOneof("command")
+        if args.one_call:
+            obs = link.Act(action)  # the command, answered with the next observation
+        else:
+            {"velocity": link.SetVelocity, "force": link.ApplyForce, "thrust": link.ApplyThrust}[kind](getattr(action, kind))
 
 
 if __name__ == "__main__":

@@ -7,8 +7,9 @@ Decoding: a ``Mission`` → :class:`~seatwin.agents.Mission`; a ``State`` → :c
 truth frame → :class:`~seatwin.agents.TruthTarget` tuples; a lidar frame's ``LidarStreamingRequest`` →
 :class:`~seatwin.sensors.lidar.LidarSweep` (its float32 columns as sent; ``stamp`` the frame's time, ``frame`` its count
 in the run, ``object_id`` −1: ground truth does not cross the wire), with its ``mount``; a radar frame's plots →
-:class:`~seatwin.sensors.radar.model.RadarScan` (``object_id`` and ``kind`` −1, no spokes). A command goes back as
-``SetVelocity``, ``ApplyForce`` (doubles) or ``ApplyThrust``, with the agent's ``tracks()``.
+:class:`~seatwin.sensors.radar.model.RadarScan` (``object_id`` and ``kind`` −1, no spokes). A command goes back in
+an ``Act`` call (a set-point, a force in doubles, or thrusts, with the agent's ``tracks()``), whose answer is the next
+observation.
 """
 
 from __future__ import annotations
@@ -124,32 +125,36 @@ def host_agent(agent: Agent, address: str, *, keep: bool = False) -> int:
     pb = agent_link_pb2
     channel = grpc.insecure_channel(address, options=GRPC_OPTIONS)
     link = agent_link_pb2_grpc.AgentLinkStub(channel)
-    answered, counts = 0, {}
+    answered, counts, obs = 0, {}, None
     try:
         while True:
-            obs = link.Observe(pb.ObserveRequest(agent=agent.name), wait_for_ready=True)
-            what = obs.WhichOneof("what")
+            if obs is None:  # else Act brought it
+                obs = link.Observe(pb.ObserveRequest(agent=agent.name), wait_for_ready=True)
+            what, message, obs = obs.WhichOneof("what"), obs, None
+
             if what == "finished":
                 if keep:
                     time.sleep(KEEP_PAUSE_S)
                     continue
                 return answered
             if what == "mission":
-                agent.reset(mission_of(obs.mission))
+                agent.reset(mission_of(message.mission))
                 counts = {}
                 continue
-            s = obs.step
+            s = message.step
             command = agent.step(s.time, frames_of(s, counts), navigation_of(s.own))
             tracks = [pb.Track(id=t.id, north=t.north, east=t.east, v_north=t.v_north, v_east=t.v_east) for t in agent.tracks()]
             if isinstance(command, SetPoint):
-                link.SetVelocity(pb.VelocityRequest(step=s.index, speed=command.speed, heading=command.heading, tracks=tracks))
+                v = pb.VelocityRequest(step=s.index, speed=command.speed, heading=command.heading, tracks=tracks)
+                action = pb.Action(velocity=v)
             elif isinstance(command, ForceCommand):
-                link.ApplyForce(pb.ForceRequest(step=s.index, x=command.X, y=command.Y, n=command.N, tracks=tracks))
+                action = pb.Action(force=pb.ForceRequest(step=s.index, x=command.X, y=command.Y, n=command.N, tracks=tracks))
             elif isinstance(command, ThrusterCommand):
                 thrust = pb.ThrustRequest(step=s.index, angles=command.angles, thrusts=command.thrusts, tracks=tracks)
-                link.ApplyThrust(thrust)
+                action = pb.Action(thrust=thrust)
             else:
                 raise ParameterError("agent", f"agent {agent.name!r} answered {type(command).__name__}, not a command")
+            obs = link.Act(action)  # the command, answered with the next observation: one call a step
             answered += 1
     except grpc.RpcError as exc:
         raise ParameterError("address", f"the simulation at {address} failed: {exc.code().name}: {exc.details()}") from None

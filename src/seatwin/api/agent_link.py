@@ -7,7 +7,8 @@ process: ``reset(mission)`` queues a ``Mission``; ``step(t, frames, navigation)`
 doubles, Gemini's ``NavigationRequest`` of it, the frames: truth targets in doubles, lidar sweeps as Gemini's
 ``LidarStreamingRequest``, radar plots in doubles) and waits for the agent's one command for that step
 (``SetVelocity``, ``ApplyForce`` in doubles, Gemini's ``ApplyForce`` in floats, ``ApplyThrust``). The agent fetches
-each queued observation with ``Observe`` (answered as soon as there is one). A slow agent slows the loop; an agent
+each queued observation with ``Observe`` (answered as soon as there is one), or sends its command with ``Act``,
+answered with the next observation: one call a step. A slow agent slows the loop; an agent
 that does not answer within ``timeout_s``, or whose launched process exits, is one
 :class:`~seatwin.errors.ParameterError` naming the agent, step and cause. :meth:`RemoteAgent.close` sends
 ``Finished``, stops the server and ends a launched process.
@@ -129,6 +130,15 @@ class _Link(agent_link_pb2_grpc.AgentLinkServicer, force_control_pb2_grpc.ForceC
             if self.outbox:
                 return self.outbox.popleft()
         return agent_link_pb2.Observation(finished=agent_link_pb2.Finished(reason="the simulation has ended"))
+
+    def Act(self, request: Any, context: grpc.ServicerContext) -> Any:  # noqa: N802
+        kind = request.WhichOneof("command")
+        if kind is None:
+            context.abort(grpc.StatusCode.INVALID_ARGUMENT, "an Action needs a command: velocity, force or thrust")
+        {"velocity": self.SetVelocity, "force": self.ApplyForce, "thrust": self.ApplyThrust}[kind](
+            getattr(request, kind), context
+        )
+        return self.Observe(request, context)
 
     def _answer(self, step: int | None, command: Command, tracks: Sequence[Any], context: grpc.ServicerContext) -> Any:
         values = (
@@ -278,15 +288,18 @@ class RemoteAgent:
             link.pending, link.command = k, None
             link.outbox.append(obs)
             link.cond.notify_all()
+            waited = False
             while link.command is None:
-                why = self._exited()
                 left = deadline - time.monotonic()
+                # the process is looked at only once a wait brought no command (waitpid is not free at every step)
+                why = self._exited() if waited else None
                 if why is None and left <= 0:
                     why = f"it did not answer within {limit:g} s"
                 if why is not None:
                     link.pending = None
                     raise ParameterError("agent", f"{self._where()} failed at step {k} (t = {time_s:.3f} s): {why}")
                 link.cond.wait(min(left, POLL_S) if self._process is not None else left)
+                waited = True
             command, self._tracks = link.command
             link.pending, link.command = None, None
         self._index += 1

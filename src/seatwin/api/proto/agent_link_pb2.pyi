@@ -206,6 +206,16 @@ class ThrustRequest(_message.Message):
     tracks: _containers.RepeatedCompositeFieldContainer[Track]
     def __init__(self, step: _Optional[int] = ..., angles: _Optional[_Iterable[float]] = ..., thrusts: _Optional[_Iterable[float]] = ..., tracks: _Optional[_Iterable[_Union[Track, _Mapping]]] = ...) -> None: ...
 
+class Action(_message.Message):
+    __slots__ = ("velocity", "force", "thrust")
+    VELOCITY_FIELD_NUMBER: _ClassVar[int]
+    FORCE_FIELD_NUMBER: _ClassVar[int]
+    THRUST_FIELD_NUMBER: _ClassVar[int]
+    velocity: VelocityRequest
+    force: ForceRequest
+    thrust: ThrustRequest
+    def __init__(self, velocity: _Optional[_Union[VelocityRequest, _Mapping]] = ..., force: _Optional[_Union[ForceRequest, _Mapping]] = ..., thrust: _Optional[_Union[ThrustRequest, _Mapping]] = ...) -> None: ...
+
 class CommandResponse(_message.Message):
     __slots__ = ("success",)
     SUCCESS_FIELD_NUMBER: _ClassVar[int]

@@ -54,6 +54,11 @@ class AgentLinkStub:
                 request_serializer=agent__link__pb2.ThrustRequest.SerializeToString,
                 response_deserializer=agent__link__pb2.CommandResponse.FromString,
                 _registered_method=True)
+        self.Act = channel.unary_unary(
+                '/seatwin.agentlink.AgentLink/Act',
+                request_serializer=agent__link__pb2.Action.SerializeToString,
+                response_deserializer=agent__link__pb2.Observation.FromString,
+                _registered_method=True)
 
 
 class AgentLinkServicer:
@@ -87,6 +92,13 @@ class AgentLinkServicer:
         context.set_details('Method not implemented!')
         raise NotImplementedError('Method not implemented!')
 
+    def Act(self, request, context):
+        """One call a step: the command for the step awaiting one, answered with the next observation (as Observe).
+        """
+        context.set_code(grpc.StatusCode.UNIMPLEMENTED)
+        context.set_details('Method not implemented!')
+        raise NotImplementedError('Method not implemented!')
+
 
 def add_AgentLinkServicer_to_server(servicer, server):
     rpc_method_handlers = {
@@ -109,6 +121,11 @@ def add_AgentLinkServicer_to_server(servicer, server):
                     servicer.ApplyThrust,
                     request_deserializer=agent__link__pb2.ThrustRequest.FromString,
                     response_serializer=agent__link__pb2.CommandResponse.SerializeToString,
+            ),
+            'Act': grpc.unary_unary_rpc_method_handler(
+                    servicer.Act,
+                    request_deserializer=agent__link__pb2.Action.FromString,
+                    response_serializer=agent__link__pb2.Observation.SerializeToString,
             ),
     }
     generic_handler = grpc.method_handlers_generic_handler(
@@ -219,6 +236,33 @@ class AgentLink:
             '/seatwin.agentlink.AgentLink/ApplyThrust',
             agent__link__pb2.ThrustRequest.SerializeToString,
             agent__link__pb2.CommandResponse.FromString,
+            options,
+            channel_credentials,
+            insecure,
+            call_credentials,
+            compression,
+            wait_for_ready,
+            timeout,
+            metadata,
+            _registered_method=True)
+
+    @staticmethod
+    def Act(request,
+            target,
+            options=(),
+            channel_credentials=None,
+            call_credentials=None,
+            insecure=False,
+            compression=None,
+            wait_for_ready=None,
+            timeout=None,
+            metadata=None):
+        return grpc.experimental.unary_unary(
+            request,
+            target,
+            '/seatwin.agentlink.AgentLink/Act',
+            agent__link__pb2.Action.SerializeToString,
+            agent__link__pb2.Observation.FromString,
             options,
             channel_credentials,
             insecure,
