@@ -1,5 +1,5 @@
 """The committed ``*_pb2``/``*_pb2_grpc`` modules are what grpcio-tools makes of the .proto files, and the
-messages are Gemini's, field for field (names, numbers, types)."""
+messages are Gemini's, field for field (names, numbers, types); seatwin's own ``agent_link.proto`` carries doubles."""
 
 from __future__ import annotations
 
@@ -13,7 +13,10 @@ import pytest
 import seatwin.api.proto as proto_pkg
 
 PROTO_DIR = Path(proto_pkg.__file__).parent
-PROTOS = sorted(PROTO_DIR.glob("*.proto"))
+SEATWINS = ("agent_link.proto",)
+"""seatwin's own protos (not Gemini's) beside Gemini's in the folder."""
+ALL_PROTOS = sorted(PROTO_DIR.glob("*.proto"))
+PROTOS = [p for p in ALL_PROTOS if p.name not in SEATWINS]
 
 
 def test_generated_modules_match_the_protos(tmp_path):
@@ -22,7 +25,7 @@ def test_generated_modules_match_the_protos(tmp_path):
 
     generated = sorted(q.name for q in generate(tmp_path))
     committed = sorted(q.name for q in PROTO_DIR.iterdir() if "_pb2" in q.name)
-    assert generated == committed and len(generated) == 3 * len(PROTOS)
+    assert generated == committed and len(generated) == 3 * len(ALL_PROTOS)
     for name in generated:
         assert (tmp_path / name).read_text() == (PROTO_DIR / name).read_text(), f"{name} drifted: regenerate"
 
@@ -159,4 +162,24 @@ def test_messages_are_geminis_field_for_field():
         "StreamCameraSensor",
         "StreamLidarSensor",
         "StreamRadarSensor",
+    ]
+
+
+def test_seatwins_agent_link_carries_doubles():
+    """Every number of the agent link that seatwin computes with is a double, so nothing is rounded on the wire."""
+    from google.protobuf.descriptor import FieldDescriptor
+
+    from seatwin.api.proto import agent_link_pb2 as a
+
+    assert a.DESCRIPTOR.package == "seatwin.agentlink" and a.DESCRIPTOR.name in SEATWINS
+    for msg in (a.Mission, a.State, a.Target, a.VelocityRequest, a.ForceRequest, a.ThrustRequest, a.Track, a.RadarPlots):
+        for f in msg.DESCRIPTOR.fields:
+            assert f.type not in (FieldDescriptor.TYPE_FLOAT,), f"{msg.DESCRIPTOR.name}.{f.name} is a float"
+    assert _fields(a.Step)[3] == ("navigation", 4, "NavigationRequest", False)
+    assert [m.name for m in a.DESCRIPTOR.services_by_name["AgentLink"].methods] == [
+        "Observe",
+        "SetVelocity",
+        "ApplyForce",
+        "ApplyThrust",
+        "Act",
     ]

@@ -49,3 +49,53 @@ def test_seatwin_verify_writes_results_a_summary_and_a_map(tmp_path, capsys):
     assert run(["verify", str(spec), "--out", str(out), "--workers", "0", "--no-progress"]) == 0
     spec.write_text("agents: [perfect]\nfamilies: [head_on]\nencounters: 2\ntcpa: [30, 40]\nrun_out: 40\n")
     assert run(["verify", str(spec), "--out", str(out), "--workers", "0", "--no-progress"]) == 2
+
+
+def test_a_grpc_agent_beside_the_in_process_ones(tmp_path, capsys):
+    """An external agent launched per run sails the same encounters; a dying one is one error row, not a crash."""
+    import sys
+    from pathlib import Path
+
+    example = Path(__file__).resolve().parents[2] / "docs" / "examples" / "agents" / "grpc_agent.py"
+    spec = tmp_path / "v.yaml"
+    launch = f"[{json.dumps(sys.executable)}, {json.dumps(str(example))}, '{{address}}'"
+    spec.write_text(
+        "agents:\n  - perfect\n"
+        f"  - {{kind: grpc, name: external, command: ['{{python}}', {json.dumps(str(example))}, '{{address}}']}}\n"
+        f"  - {{kind: grpc, name: dying, command: {launch}, --die-at, '3'], timeout_s: 10}}\n"
+        "families: [head_on]\nencounters: 1\ntcpa: [30, 30]\nrun_out: 10\nworst: 0\n"
+    )
+    out = tmp_path / "out"
+    assert run(["verify", str(spec), "--out", str(out), "--workers", "0", "--no-progress"]) == 0
+    captured = capsys.readouterr()
+    rows = {r["agent"]: r for r in csv.DictReader((out / "results.csv").open())}
+    assert set(rows) == {"perfect", "external", "dying"}
+    assert rows["external"]["passed"] in ("True", "False") and int(rows["external"]["steps"]) > 300
+    assert "exited with code 3: grpc_agent: dying at step 3" in rows["dying"]["error"]
+    assert "run head_on_0000 (dying) failed: " in captured.err
+    summary = json.loads((out / "verify.json").read_text())
+    assert summary["agents"]["external"]["minus_perfect"]["pairs"] == 1
+
+
+def test_bad_grpc_agents_are_named(tmp_path):
+    p = tmp_path / "v.yaml"
+    p.write_text("agents:\n  - {kind: grpc, name: x, command: [a], address: 'localhost:5'}\n")
+    with pytest.raises(InputError, match="exactly one of command"):
+        load_verify_spec(p)
+    p.write_text("agents:\n  - perfect\n  - {kind: grpc, name: perfect, address: 'localhost:5'}\n")
+    with pytest.raises(InputError, match="unique"):
+        load_verify_spec(p)
+    p.write_text("agents:\n  - {kind: grpc, name: x, address: 'localhost:5', sensors: [camera]}\n")
+    with pytest.raises(InputError, match="sensors"):
+        load_verify_spec(p)
+
+
+def test_the_shipped_grpc_example_spec_is_valid_and_its_agent_is_beside_it():
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[2] / "docs" / "examples" / "agents" / "verify_grpc.yaml"
+    spec = load_verify_spec(path)
+    assert spec.agent_names == ("perfect", "example")
+    ext = spec.agents[1]
+    assert ext.command[0] == "{python}" and "{address}" in ext.command
+    assert (path.parent / ext.command[1]).is_file()

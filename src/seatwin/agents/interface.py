@@ -12,10 +12,12 @@ It answers a :data:`Command`: generalised forces (:class:`ForceCommand`), thrust
 (:class:`ThrusterCommand`), or a speed/heading set-point (:class:`SetPoint`) that the loop's autopilot
 (:class:`seatwin.dynamics.Autopilot`) turns into forces.
 
-The out-of-process transport (gRPC, Gemini's ``ForceControl`` with ``Navigation`` and ``SensorStreaming`` out) is a
-translation of these types: ``ForceCommand`` ↔ ``ForceControl``, ``SetPoint`` ↔ its set-point variant, ``Navigation``
-↔ ``Navigation``, frames ↔ ``SensorStreaming``. A proxy class with this same :class:`Agent` shape that forwards each
-``step`` over the wire is all the loop needs (not built yet).
+The out-of-process transport (gRPC: :mod:`seatwin.api.agent_link`, Gemini's ``ForceControl`` beside seatwin's
+``AgentLink``) is a translation of these types: ``ForceCommand`` ↔ ``ApplyForce``, ``SetPoint`` ↔ ``SetVelocity``,
+``ThrusterCommand`` ↔ ``ApplyThrust``, ``Navigation`` ↔ ``State`` (and Gemini's ``NavigationRequest``), frames ↔
+``Frame`` (lidar as Gemini's ``LidarStreamingRequest``). :class:`~seatwin.api.agent_link.RemoteAgent` has this same
+:class:`Agent` shape and forwards each ``step`` over the wire; :func:`seatwin.api.agent_host.host_agent` is the other
+side.
 """
 
 from __future__ import annotations

@@ -10,7 +10,8 @@ from seatwin.cli.output import overwrite_option
 
 _HELP = (
     "Closed-loop safety verification: the agents of AGENT.yaml (reference: lidar/radar perception and JIPDA feeding "
-    "COLREG velocity obstacles; perfect: the same fed ground truth; late: a deliberately late reaction) sail the "
+    "COLREG velocity obstacles; perfect: the same fed ground truth; late: a deliberately late reaction; or your own "
+    "agent in another process over gRPC, kind: grpc, see docs/agents.md) sail the "
     "ownship through encounters sampled from COLREG families (head-on, crossing give-way/stand-on, overtaking, "
     "multi), one job per (encounter, agent) on Ray (local by default, a cluster with --address; --workers 0 runs "
     "in this process). Writes DIR/results.csv (one row per run: the encounter, the verdict and its reasons), "

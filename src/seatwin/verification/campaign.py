@@ -25,7 +25,7 @@ import numpy as np
 
 from seatwin.campaign.engine import Engine, Job, RunReport, run_jobs
 from seatwin.encounters.space import EncounterSpace, latin_hypercube, random_points, space
-from seatwin.verification.spec import VerifySpec, load_verify_spec
+from seatwin.verification.spec import VerifySpec, agent_name, load_verify_spec
 
 OUTPUTS = ("results.csv", "verify.json", "failure_map.png", "worst", "jobs")
 
@@ -34,9 +34,13 @@ def _space(spec: VerifySpec, family: str) -> EncounterSpace:
     return space(family, run_out=spec.run_out, tcpa=spec.tcpa)
 
 
-def verify_jobs(spec: VerifySpec) -> list[Job]:
-    """Every (family, encounter, agent) job of ``spec``."""
+def verify_jobs(spec: VerifySpec, folder: str | os.PathLike[str] = ".") -> list[Job]:
+    """Every (family, encounter, agent) job of ``spec``; a gRPC agent's command runs in ``folder`` (the spec's)."""
     jobs = []
+    remote = {
+        agent_name(a): None if isinstance(a, str) else {**a.model_dump(mode="json"), "cwd": str(Path(folder).resolve())}
+        for a in spec.agents
+    }
     for f_i, family in enumerate(spec.families):
         sp = _space(spec, family)
         draw = latin_hypercube if spec.sampler == "lhs" else random_points
@@ -50,7 +54,8 @@ def verify_jobs(spec: VerifySpec) -> list[Job]:
                             "family": family,
                             "index": i,
                             "point": [float(x) for x in u],
-                            "agent": agent,
+                            "agent": agent_name(agent),
+                            **({"remote": remote[agent_name(agent)]} if remote[agent_name(agent)] else {}),
                             "seed": spec.seed + i,
                             "harbour": spec.harbour,
                             "tcpa": spec.tcpa,
@@ -78,13 +83,30 @@ def _run(params: dict[str, Any]) -> tuple[Any, Any, Any]:
     enc = sp.encounter(params["point"])
     name = f"{params['family']}_{params['index']:04d}"
     scenario, _ = encounter_scenario(enc, name, params["harbour"], params["seed"])
-    agent = (
-        make_agent(params["agent"])
-        if params["agent"] == "perfect"
-        else make_agent(params["agent"], sensors=tuple(params["sensors"]))
-    )
     settings = SimulationSettings(seed=params["seed"], **params["sensor_model"])
-    rec = run_closed_loop(scenario, agent, settings)
+    remote = params.get("remote")
+    if remote is not None:
+        from seatwin.api.agent_link import RemoteAgent
+
+        assert scenario.ownship is not None
+        with RemoteAgent(
+            params["agent"],
+            tuple(remote["sensors"]),
+            address=remote["address"] or "127.0.0.1:0",
+            command=remote["command"],
+            timeout_s=remote["timeout_s"],
+            startup_timeout_s=remote["startup_timeout_s"],
+            vessel=scenario.ownship.name,
+            cwd=remote["cwd"],
+        ) as agent:
+            rec = run_closed_loop(scenario, agent, settings)
+    else:
+        agent = (
+            make_agent(params["agent"])
+            if params["agent"] == "perfect"
+            else make_agent(params["agent"], sensors=tuple(params["sensors"]))
+        )
+        rec = run_closed_loop(scenario, agent, settings)
     verdict = judge(rec, harbour_map(params["harbour"]), VerdictRules(safety_distance=params["safety_distance"]))
     return scenario, rec, verdict
 
@@ -285,7 +307,7 @@ def run_verification(
         outputs=OUTPUTS,
         overwrite=overwrite,
     )
-    jobs = verify_jobs(spec)
+    jobs = verify_jobs(spec, Path(spec_path).resolve().parent)
     report = run_jobs(jobs, verify_job, out, engine=engine, address=address, workers=workers, progress=progress)
     rows = []
     for job in jobs:
@@ -296,7 +318,7 @@ def run_verification(
             else {**{k: job.params[k] for k in ("family", "index", "agent", "seed")}, "error": rec.error, "passed": None}
         )
     ok_rows = [r for r in rows if r.get("passed") is not None]
-    summary = summarise(ok_rows, spec.agents)
+    summary = summarise(ok_rows, spec.agent_names)
     ran = [report.records[j.id] for j in jobs if report.records[j.id].ok]
     cost = np.array([r.result["cpu_s"] for r in ran]) if ran else np.zeros(0)
     summary["cost"] = {
@@ -305,7 +327,7 @@ def run_verification(
         "cpu_s_per_run_mean": float(cost.mean()) if cost.size else None,
         "cpu_s_per_run_by_agent": {
             a: float(np.mean([r.result["cpu_s"] for r in ran if r.result["agent"] == a]))
-            for a in spec.agents
+            for a in spec.agent_names
             if any(r.result["agent"] == a for r in ran)
         },
         "simulated_s_per_run_mean": float(np.mean([r.result["simulated_s"] for r in ran])) if ran else None,
@@ -315,5 +337,5 @@ def run_verification(
     write_text_atomic(out / "results.csv", _csv(rows))
     write_text_atomic(out / "verify.json", json.dumps(summary, indent=1, default=str) + "\n")
     if ok_rows:
-        plot_failure_map(ok_rows, spec.agents, out / "failure_map.png")
+        plot_failure_map(ok_rows, spec.agent_names, out / "failure_map.png")
     return VerifyResult(rows, summary, report, out)

@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import Literal
+from typing import Annotated, Any, Literal
 
-from pydantic import Field
+from pydantic import Discriminator, Field, Tag, model_validator
 
 from seatwin.encounters.space import SPACES
 from seatwin.errors import InputError
@@ -25,11 +25,52 @@ class SensorModel(Settings):
     lidar_preset: Literal["vlp16", "vlp16-thesis"] = "vlp16"
 
 
+class GrpcAgent(Settings):
+    """An agent in another process, driven over gRPC (:class:`seatwin.api.agent_link.RemoteAgent`): seatwin listens
+    and the agent connects — either launched per run from ``command`` (``{address}`` replaced by the address seatwin
+    listens on; run in the spec file's folder), or already running and connecting to ``address`` (then one run at a
+    time: a single worker)."""
+
+    kind: Literal["grpc"]
+    name: str = Field(..., min_length=1, pattern=r"^[A-Za-z0-9_.-]+$", description="The agent's name in the results.")
+    command: tuple[str, ...] | None = Field(None, min_length=1, description="The agent's command line, launched per run.")
+    address: str | None = Field(None, description="HOST:PORT seatwin listens on for an agent started separately.")
+    sensors: tuple[Literal["truth", "lidar", "radar"], ...] = Field(
+        ("truth",), min_length=1, description="The frames it is sent."
+    )
+    timeout_s: float = Field(30.0, gt=0, description="How long a step waits for its command before the run fails.")
+    startup_timeout_s: float = Field(60.0, gt=0, description="How long a run's first step waits (the agent's start-up).")
+
+    @model_validator(mode="after")
+    def _one_way(self) -> GrpcAgent:
+        if (self.command is None) == (self.address is None):
+            raise ValueError("give exactly one of command (to launch the agent) and address (an agent started separately)")
+        return self
+
+
+AgentName = Literal["reference", "perfect", "late"]
+
+
+def _entry_kind(v: Any) -> str:
+    return "variant" if isinstance(v, str) else "grpc"
+
+
+AgentEntry = Annotated[Annotated[AgentName, Tag("variant")] | Annotated[GrpcAgent, Tag("grpc")], Discriminator(_entry_kind)]
+"""An ``agents`` entry: a variant's name, or a mapping of a gRPC agent (errors are the chosen kind's)."""
+
+
+def agent_name(agent: AgentName | GrpcAgent) -> str:
+    """A spec entry's name in the results (a variant's own, a gRPC agent's ``name``)."""
+    return agent if isinstance(agent, str) else agent.name
+
+
 class VerifySpec(Settings):
     """A verification campaign: ``agents`` × ``families`` × ``encounters`` sampled points."""
 
-    agents: tuple[Literal["reference", "perfect", "late"], ...] = Field(
-        ("perfect", "reference"), min_length=1, description="Agent variants (seatwin.agents.VARIANTS)."
+    agents: tuple[AgentEntry, ...] = Field(
+        ("perfect", "reference"),
+        min_length=1,
+        description="Agent variants (seatwin.agents.VARIANTS) or gRPC agents ({kind: grpc, name, command | address}).",
     )
     sensors: tuple[Literal["lidar", "radar"], ...] = Field(("lidar", "radar"), min_length=1, description="Modelled sensors.")
     families: tuple[str, ...] = Field(("head_on", "crossing_give_way"), min_length=1, description=f"Of {', '.join(SPACES)}.")
@@ -42,6 +83,17 @@ class VerifySpec(Settings):
     safety_distance: float = Field(10.0, gt=0, description="The safety domain's radius [m] (centre to centre).")
     sensor_model: SensorModel = SensorModel()
     worst: int = Field(3, ge=0, description="Failed runs of modelled perception saved as scenarios with the sailed path.")
+
+    @model_validator(mode="after")
+    def _unique_names(self) -> VerifySpec:
+        names = [agent_name(a) for a in self.agents]
+        if len(set(names)) != len(names):
+            raise ValueError(f"agent names must be unique, got {names}")
+        return self
+
+    @property
+    def agent_names(self) -> tuple[str, ...]:
+        return tuple(agent_name(a) for a in self.agents)
 
 
 def load_verify_spec(path: str | os.PathLike[str]) -> VerifySpec:
