@@ -99,3 +99,25 @@ def test_the_shipped_grpc_example_spec_is_valid_and_its_agent_is_beside_it():
     ext = spec.agents[1]
     assert ext.command[0] == "{python}" and "{address}" in ext.command
     assert (path.parent / ext.command[1]).is_file()
+
+
+def test_encounters_with_no_place_on_the_harbours_water_are_rows_not_runs(tmp_path):
+    (tmp_path / "pond.yaml").write_text(
+        "map_width: 30\nmap_height: 30\ngrid_resolution: 1.0\norigin_x_coordinate: -15\norigin_y_coordinate: -15\n"
+    )
+    (tmp_path / "pond.bin").write_bytes(bytes([1]) * 900)  # 30 m of water: no encounter fits
+    spec = tmp_path / "v.yaml"
+    spec.write_text("agents: [perfect]\nfamilies: [head_on]\nencounters: 2\nharbour: pond.yaml\n")
+    out = tmp_path / "out"
+    assert run(["verify", str(spec), "--out", str(out), "--workers", "0", "--no-progress"]) == 0
+    rows = list(csv.DictReader((out / "results.csv").open()))
+    assert [r["placed"] for r in rows] == ["False", "False"] and all("no place on water" in r["reasons"] for r in rows)
+    summary = json.loads((out / "verify.json").read_text())
+    assert summary["placement"]["families"]["head_on"] == {
+        "placed": 0,
+        "not_placed": 2,
+        "rejected_draws": 0,
+        "rejected_draws_mean": None,
+        "rejected_draws_max": None,
+    }
+    assert summary["agents"]["perfect"]["runs"] == 0

@@ -3,13 +3,15 @@ samplers (random, Latin hypercube, adaptive falsification), placement on water, 
 
 * :mod:`.geometry` — :class:`TargetGeometry`, :func:`target_start`, :func:`situation` (COLREG sectors);
 * :mod:`.space` — :class:`Encounter`, :class:`EncounterSpace`, :data:`SPACES`, samplers, :func:`adaptive_search`;
-* :mod:`.place` — :func:`place` (open water or a harbour's water), :func:`paths`;
+* :mod:`.search` — :func:`surrogate_search` (Gaussian-process falsification);
+* :mod:`.place` — :func:`place` (open water or a harbour's water, :data:`ENCOUNTER_AREAS`), :func:`paths`;
 * :mod:`.build` — :func:`encounter_scenario`, :func:`save_encounter`.
 """
 
 from seatwin.encounters.build import describe, encounter_scenario, save_encounter
 from seatwin.encounters.geometry import Kind, TargetGeometry, classify, closest_approach, situation, target_start
-from seatwin.encounters.place import EncounterPaths, Placement, paths, place
+from seatwin.encounters.place import ENCOUNTER_AREAS, EncounterPaths, NoPlacementError, Placement, paths, place
+from seatwin.encounters.search import surrogate_search
 from seatwin.encounters.space import (
     RANGES,
     SPACES,
@@ -23,12 +25,14 @@ from seatwin.encounters.space import (
 )
 
 __all__ = [
+    "ENCOUNTER_AREAS",
     "RANGES",
     "SPACES",
     "Encounter",
     "EncounterPaths",
     "EncounterSpace",
     "Kind",
+    "NoPlacementError",
     "Placement",
     "TargetGeometry",
     "Trial",
@@ -44,5 +48,6 @@ __all__ = [
     "save_encounter",
     "situation",
     "space",
+    "surrogate_search",
     "target_start",
 ]

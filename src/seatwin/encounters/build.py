@@ -74,7 +74,12 @@ def save_encounter(
         "parameters": encounter.parameters(),
         "situations": [k.value for k in encounter.situations],
         "run_out": encounter.run_out,
-        "placement": {"north": placement.north, "east": placement.east, "course_deg": math.degrees(placement.course)},
+        "placement": {
+            "north": placement.north,
+            "east": placement.east,
+            "course_deg": math.degrees(placement.course),
+            "rejected_draws": placement.rejected,
+        },
         "harbour": harbour,
         "seed": seed,
     }

@@ -69,8 +69,9 @@ def verify_jobs(spec: VerifySpec, folder: str | os.PathLike[str] = ".") -> list[
     return jobs
 
 
-def _run(params: dict[str, Any]) -> tuple[Any, Any, Any]:
-    """(scenario, run record, verdict) of one job's parameters."""
+def _run(params: dict[str, Any]) -> tuple[Any, Any, Any, Any]:
+    """(scenario, placement, run record, verdict) of one job's parameters; an :class:`InputError` when the encounter
+    has no place on the harbour's water."""
     from seatwin.agents import make_agent
     from seatwin.encounters.build import encounter_scenario
     from seatwin.layout import harbour_map
@@ -82,7 +83,7 @@ def _run(params: dict[str, Any]) -> tuple[Any, Any, Any]:
     sp = space(params["family"], run_out=params["run_out"], tcpa=tcpa)
     enc = sp.encounter(params["point"])
     name = f"{params['family']}_{params['index']:04d}"
-    scenario, _ = encounter_scenario(enc, name, params["harbour"], params["seed"])
+    scenario, placement = encounter_scenario(enc, name, params["harbour"], params["seed"])
     settings = SimulationSettings(seed=params["seed"], **params["sensor_model"])
     remote = params.get("remote")
     if remote is not None:
@@ -108,24 +109,29 @@ def _run(params: dict[str, Any]) -> tuple[Any, Any, Any]:
         )
         rec = run_closed_loop(scenario, agent, settings)
     verdict = judge(rec, harbour_map(params["harbour"]), VerdictRules(safety_distance=params["safety_distance"]))
-    return scenario, rec, verdict
+    return scenario, placement, rec, verdict
 
 
 def verify_job(params: dict[str, Any], inputs: dict[str, Any]) -> dict[str, Any]:
-    """One job: the encounter's parameters, the verdict's row and the run's cost."""
+    """One job: the encounter's parameters, the verdict's row and the run's cost; an encounter with no place on the
+    harbour's water is a row with ``placed`` false and the reason (not run, not counted in the failure rates)."""
     from seatwin.encounters.geometry import target_start
+    from seatwin.encounters.place import NoPlacementError
 
     t0, c0 = time.perf_counter(), time.process_time()
-    scenario, rec, verdict = _run(params)
     tcpa = None if params["tcpa"] is None else tuple(params["tcpa"])
     enc = space(params["family"], run_out=params["run_out"], tcpa=tcpa).encounter(params["point"])
+    head = {k: params[k] for k in ("family", "index", "agent", "seed")}
+    try:
+        scenario, placement, rec, verdict = _run(params)
+    except NoPlacementError as exc:
+        return {**head, **enc.parameters(), "placed": False, "passed": None, "reasons": exc.detail}
     starts = [target_start(enc.own_speed, t) for t in enc.targets]
     return {
-        "family": params["family"],
-        "index": params["index"],
-        "agent": params["agent"],
-        "seed": params["seed"],
+        **head,
         **enc.parameters(),
+        "placed": True,
+        "placement_rejected": placement.rejected,
         **{f"bearing_deg_{i}": math.degrees(s.bearing) for i, s in enumerate(starts, start=1)},
         **verdict.row(),
         "nominal_cpa_1": verdict.targets[0].nominal_cpa,
@@ -204,6 +210,24 @@ def summarise(rows: list[dict[str, Any]], agents: tuple[str, ...]) -> dict[str, 
     return out
 
 
+def placement_summary(rows: list[dict[str, Any]], harbour: str) -> dict[str, Any]:
+    """How the encounters were placed: per family the jobs placed, the draws refused (a path off the water) before
+    each placement, and the jobs with no place on the water in the placement's tries."""
+    out: dict[str, Any] = {"harbour": harbour, "families": {}}
+    for fam in sorted({r["family"] for r in rows}):
+        mine = [r for r in rows if r["family"] == fam and "placed" in r]
+        placed = [r for r in mine if r["placed"]]
+        rejected = [int(r["placement_rejected"]) for r in placed]
+        out["families"][fam] = {
+            "placed": len(placed),
+            "not_placed": len(mine) - len(placed),
+            "rejected_draws": sum(rejected),
+            "rejected_draws_mean": sum(rejected) / len(rejected) if rejected else None,
+            "rejected_draws_max": max(rejected, default=None),
+        }
+    return out
+
+
 def plot_failure_map(rows: list[dict[str, Any]], agents: tuple[str, ...], path: Path) -> Path:
     """The CPA without avoidance against the target's initial relative bearing, coloured by verdict; a panel per agent."""
     import matplotlib
@@ -266,7 +290,7 @@ def _save_worst(spec: VerifySpec, rows: list[dict[str, Any]], jobs: list[Job], o
     failed.sort(key=lambda x: x[0]["min_distance"])
     names = []
     for row, job in failed[: spec.worst]:
-        scenario, rec, _ = _run(job.params)
+        scenario, _, rec, _ = _run(job.params)
         own = scenario.ownship
         assert own is not None
         sailed = Trajectory(rec.time, rec.own[:, 0], rec.own[:, 1], rec.own[:, 2], source=f"{scenario.name}: sailed")
@@ -319,7 +343,8 @@ def run_verification(
         )
     ok_rows = [r for r in rows if r.get("passed") is not None]
     summary = summarise(ok_rows, spec.agent_names)
-    ran = [report.records[j.id] for j in jobs if report.records[j.id].ok]
+    ran = [report.records[j.id] for j in jobs if report.records[j.id].ok and report.records[j.id].result.get("placed", True)]
+    summary["placement"] = placement_summary(rows, spec.harbour)
     cost = np.array([r.result["cpu_s"] for r in ran]) if ran else np.zeros(0)
     summary["cost"] = {
         "jobs": len(jobs),
