@@ -91,7 +91,9 @@ def format_info(d: dict[str, Any]) -> str:
         f"complete:  {state}",
     ]
     if d.get("size_bytes") is not None:
-        how = [f"{d['compression']} chunks"] if d.get("compression") else []
+        sqlite = {"zstd": "zstd per message", "zstd-file": "zstd file", "none": "uncompressed"}
+        comp = d.get("compression")
+        how = [(sqlite.get(comp, comp) if d["format"] == "sqlite3" else f"{comp} chunks")] if comp else []
         how += [f"{d['image_format']} images"] if d.get("image_format") else []
         lines.append(f"size:      {d['size_bytes'] / 1e6:.1f} MB" + (f"  ({', '.join(how)})" if how else ""))
     if d.get("seatwin_version"):
