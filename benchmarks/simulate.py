@@ -14,6 +14,8 @@ Bag size (issue #23): ``--compare none/raw,default`` runs the same simulation on
 times in turn (A B A B …, so a slow spell of a shared machine hits all alike), and prints per variant the bag
 size, the best wall time, the real-time factor and the process CPU time, and their ratios to the first
 variant: ``python benchmarks/simulate.py --sensors lidar,camera --preset vlp16 --compare none/raw,default``.
+A variant may name the bag format first, ``FORMAT:COMPRESSION/IMAGE_FORMAT`` (default mcap): rosbag2 SQLite3 with
+rosbag2's zstd, ``--compare sqlite3:none/raw,sqlite3:zstd/raw,sqlite3:zstd-file/raw``.
 """
 
 from __future__ import annotations
@@ -37,7 +39,7 @@ def main() -> None:
     ap.add_argument("--preset", default="vlp16-thesis")
     ap.add_argument("--sensors", default="lidar")
     ap.add_argument("--lidar-mode", default="raycast")
-    ap.add_argument("--compare", default=None, help="variants COMPRESSION/IMAGE_FORMAT or 'default', comma-separated")
+    ap.add_argument("--compare", default=None, help="variants [FORMAT:]COMPRESSION/IMAGE_FORMAT or 'default', comma-separated")
     ap.add_argument("--repeats", type=int, default=2)
     args = ap.parse_args()
     sc = builtin_scenario(args.scenario)
@@ -82,10 +84,11 @@ def main() -> None:
 
 def _run(sc: object, args: argparse.Namespace, variant: str) -> dict[str, float]:
     """One simulation with ``variant``'s compression and image format: wall, CPU time, RTF, bag size."""
-    extra = {}
+    extra: dict[str, str] = {}
     if variant != "default":
-        compression, image_format = variant.split("/")
-        extra = {"compression": compression, "image_format": image_format}
+        fmt, _, rest = variant.rpartition(":")
+        compression, image_format = rest.split("/")
+        extra = {"compression": compression, "image_format": image_format} | ({"fmt": fmt} if fmt else {})
     with tempfile.TemporaryDirectory() as tmp:
         cpu0 = time.process_time()
         res = simulate_scenario(
@@ -129,7 +132,7 @@ def compare(sc: object, args: argparse.Namespace) -> None:
         best["cpu_ratio"] = round(best["cpu_s"] / base["cpu_s"], 3)
         table[v] = best
         print(
-            f"{v:>12}: {best['bag_mb']:8.2f} MB  RTF {best['realtime_factor']:6.2f} (x{best['rtf_ratio']:.3f})"
+            f"{v:>20}: {best['bag_mb']:8.2f} MB  RTF {best['realtime_factor']:6.2f} (x{best['rtf_ratio']:.3f})"
             f"  CPU {best['cpu_s']:.2f} s (x{best['cpu_ratio']:.3f})"
         )
     info = {"scenario": args.scenario, "sensors": args.sensors, "preset": args.preset, "duration_s": args.duration}

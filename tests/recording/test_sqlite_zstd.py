@@ -110,6 +110,24 @@ def test_killed_message_compressed_run_is_read_to_its_last_commit(tmp_path: Path
         assert rec.recovered and [m.msg.data for m in rec.messages()] == [f"m{k}" for k in range(4)]
 
 
+def test_killed_compressed_run_is_repaired_compressed(tmp_path: Path) -> None:
+    from seatwin.recording.repair import repair_bag
+
+    w = RecordingWriter(tmp_path / "run", "sqlite3", compression="zstd")
+    for k in range(3):
+        w.write_raw(TOPIC, STRING, T0 + k, _cdr(f"m{k}"))
+    w.flush()
+    w.storage.abort()
+    res = repair_bag(tmp_path / "run", tmp_path / "fixed")  # the manifest's compression, unless told
+    assert _meta(res.bag)["compression_mode"] == "MESSAGE"
+    assert _raw(tmp_path / "fixed") == _raw(tmp_path / "run")
+
+
+def test_a_db3_zstd_file_opens_through_its_folder(tmp_path: Path) -> None:
+    bag = _write(tmp_path / "run", "zstd-file")
+    assert _raw(bag / "recording.db3.zstd") == _raw(bag)
+
+
 def test_convert_between_compressions_and_formats(tmp_path: Path) -> None:
     from seatwin.recording.convert import convert_bag
 

@@ -126,6 +126,8 @@ def _find_bag(path: Path) -> tuple[Path, str, Path | None]:
     if not path.exists():
         raise InputError(path, "no such file or directory")
     if path.is_file():
+        if path.name.endswith(".db3.zstd") and (path.parent / "metadata.yaml").is_file():
+            return _find_bag(path.parent)  # a file-compressed SQLite3 file: read through its rosbag2 folder
         fmt = {".bag": "ros1", ".mcap": "mcap", ".db3": "sqlite3"}.get(path.suffix)
         if fmt is None:
             raise InputError(path, "not a bag: expected a .bag, .mcap or .db3 file, a rosbag2 directory or a run directory")
