@@ -128,6 +128,17 @@ def test_a_db3_zstd_file_opens_through_its_folder(tmp_path: Path) -> None:
     assert _raw(bag / "recording.db3.zstd") == _raw(bag)
 
 
+@pytest.mark.parametrize(("compression", "label"), [("zstd", "zstd per message"), ("zstd-file", "zstd file")])
+def test_bag_info_names_a_foreign_bags_compression(tmp_path: Path, compression: str, label: str) -> None:
+    from seatwin.recording.info import bag_info, format_info
+
+    foreign = tmp_path / "foreign"
+    shutil.copytree(_write(tmp_path / "run", compression), foreign)  # no seatwin manifest beside it
+    info = bag_info(foreign)
+    assert info["compression"] == compression and info["message_count"] == 6 and info["complete"] is None
+    assert f"({label})" in format_info(info)
+
+
 def test_convert_between_compressions_and_formats(tmp_path: Path) -> None:
     from seatwin.recording.convert import convert_bag
 
