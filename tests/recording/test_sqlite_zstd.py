@@ -139,6 +139,22 @@ def test_bag_info_names_a_foreign_bags_compression(tmp_path: Path, compression: 
     assert f"({label})" in format_info(info)
 
 
+def test_ground_truth_of_a_file_compressed_run(tmp_path: Path) -> None:
+    """evaluate/report take ground truth from a recording path; a ``.db3.zstd`` file is one."""
+    from recording_helpers import write_run
+
+    from seatwin.evaluation.truth import load_truth
+
+    write_run(tmp_path / "run", "sqlite3", compression="zstd-file")
+    db = tmp_path / "run" / "recording" / "recording.db3.zstd"
+    assert db.is_file()
+    want = load_truth(tmp_path / "run")
+    got = load_truth(db)
+    assert sorted(got.targets) == sorted(want.targets) and got.targets
+    for name, track in want.targets.items():
+        assert list(got.targets[name].time) == list(track.time) and list(got.targets[name].north) == list(track.north)
+
+
 def test_convert_between_compressions_and_formats(tmp_path: Path) -> None:
     from seatwin.recording.convert import convert_bag
 
