@@ -206,7 +206,8 @@ def targets_truth(vessels: dict[str, VesselTruth], source: str) -> TruthSet:
 
 
 def load_truth(spec: str | os.PathLike[str]) -> TruthSet:
-    """Ground truth from a scenario (file or built-in name) or a recording (``.mcap``/``.bag``/``.db3``/``.db3.zstd`` or a folder)."""
+    """Ground truth from a scenario (file or built-in name) or a recording (``.mcap``, ``.bag``, ``.db3``, ``.db3.zstd``
+    or a folder)."""
     from seatwin.scenario.load import load_scenario
 
     path = Path(spec)
