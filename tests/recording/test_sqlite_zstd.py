@@ -236,6 +236,24 @@ def test_bag_budget_bounds_all_messages_of_a_pass(tmp_path: Path, monkeypatch: p
     assert "SEATWIN_MAX_BAG_BYTES left" in _error(bag)
 
 
+def test_bomb_is_refused_within_the_budget_of_memory(tmp_path: Path) -> None:
+    """64 MiB of zeros in a frame that does not declare its size: refused once 4 MiB (the budget) are out."""
+    import tracemalloc
+
+    c = zstd.ZstdCompressor()
+    frame = b"".join(c.compress(bytes(MIB)) for _ in range(64)) + c.flush()
+    assert len(frame) < 64 * 1024
+    bag = _with_message(tmp_path, frame)
+    tracemalloc.start()
+    try:
+        msg = _error(bag, ReadOptions(chunk_bytes=4 * MIB))
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert "inflates beyond the per-message budget of 4194304 bytes" in msg
+    assert peak < 12 * MIB, peak
+
+
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(
     flips=st.lists(st.tuples(st.integers(0, 10_000), st.integers(1, 255)), min_size=1, max_size=6),
