@@ -119,7 +119,22 @@ def inflate_message(data: bytes | memoryview, budget: int) -> bytes:
         raise Inflated(f"corrupt zstd frame: {' '.join(str(exc).split())[:200]}") from None
     if size != len(data):
         raise Inflated(f"holds {len(data) - size} bytes after its zstd frame")
-    return b"".join(inflate_pieces("zstd", data, declared, budget, unit="message"))
+    if declared is None:  # only the budget bounds it: a piece at a time
+        return b"".join(inflate_pieces("zstd", data, None, budget, unit="message"))
+    if declared > budget:
+        raise Inflated(f"declares {declared} bytes uncompressed, over the per-message budget of {budget}")
+    d = zstd.ZstdDecompressor()  # one buffer of at most declared + 1 bytes: a frame that lies shows in its length
+    try:
+        out = d.decompress(data, declared + 1)
+    except zstd.ZstdError as exc:
+        raise Inflated(f"corrupt zstd data: {' '.join(str(exc).split())[:200]}") from None
+    if len(out) > declared:
+        raise Inflated(f"inflates beyond the {declared} bytes it declares")
+    if not d.eof:
+        raise Inflated(f"compressed stream ends early ({len(out)} of {declared} bytes)")
+    if len(out) != declared:
+        raise Inflated(f"inflates to {len(out)} bytes, but declares {declared}")
+    return out
 
 
 class StagedBag:
