@@ -323,6 +323,15 @@ def test_unreadable_compression_metadata_names_the_field(tmp_path: Path, field: 
     assert needle in str(info.value) and "metadata.yaml" in str(info.value) and field in str(info.value)
 
 
+def test_broken_metadata_falls_back_to_the_storage_file(tmp_path: Path) -> None:
+    """A metadata.yaml that does not parse: the .db3 is read as a killed run's, its frames inflated."""
+    bag = _write(tmp_path / "run", "zstd")
+    want = _raw(bag)
+    (bag / "metadata.yaml").write_text("rosbag2_bagfile_information: [unclosed")
+    with open_bag(bag) as rec:
+        assert rec.recovered and [(t, ty, ts, bytes(d)) for t, ty, ts, d in rec.raw_messages()] == want
+
+
 def test_staged_folder_is_removed_on_close(tmp_path: Path) -> None:
     bag = _write(tmp_path / "run", "zstd-file")
     rec = open_bag(bag)

@@ -51,8 +51,13 @@ def _info(bag: Path) -> dict[str, Any] | None:
 
 
 def bag_compression(bag: Path) -> str:
-    """``none``, ``message`` or ``file``: how the rosbag2 folder ``bag`` is compressed (its ``metadata.yaml``)."""
-    info = _info(bag)
+    """``none``, ``message`` or ``file``: how the rosbag2 folder ``bag`` is compressed (its ``metadata.yaml``).
+    A ``metadata.yaml`` that is no rosbag2 metadata at all says ``none``: the reader then reads the storage files
+    without it, as a killed run's (message frames recognised by their magic number)."""
+    try:
+        info = _info(bag)
+    except InputError:
+        return "none"
     if info is None:
         return "none"
     meta = bag / "metadata.yaml"
