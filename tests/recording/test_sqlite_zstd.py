@@ -123,6 +123,28 @@ def test_killed_compressed_run_is_repaired_compressed(tmp_path: Path) -> None:
     assert _raw(tmp_path / "fixed") == _raw(tmp_path / "run")
 
 
+def test_file_mode_failing_at_its_metadata_leaves_the_plain_db3(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The .db3 is removed only after metadata.yaml names the .zstd: a close that fails in between (a full disk)
+    leaves a bag the reader recovers, and the run says it did not complete."""
+    import seatwin.recording.storage.rosbag2 as r2
+
+    def full(*_: object) -> None:
+        raise OSError(28, "No space left on device")
+
+    w = RecordingWriter(tmp_path / "run", "sqlite3", compression="zstd-file")
+    for k in range(3):
+        w.write_raw(TOPIC, STRING, T0 + k, _cdr(f"m{k}"))
+    monkeypatch.setattr(r2.os, "replace", full)
+    with pytest.raises(InputError, match="No space left"):
+        w.close()
+    monkeypatch.undo()
+    bag = tmp_path / "run" / "recording"
+    assert (bag / "recording.db3").is_file() and not (bag / "metadata.yaml").exists()
+    with open_bag(tmp_path / "run") as rec:
+        assert rec.recovered and not rec.complete
+        assert [m.msg.data for m in rec.messages()] == ["m0", "m1", "m2"]
+
+
 def test_a_db3_zstd_file_opens_through_its_folder(tmp_path: Path) -> None:
     bag = _write(tmp_path / "run", "zstd-file")
     assert _raw(bag / "recording.db3.zstd") == _raw(bag)

@@ -76,9 +76,14 @@ class Sqlite3Storage(Rosbag2Storage):
         except BaseException:
             tmp.unlink(missing_ok=True)  # the .db3 stays, readable
             raise
-        self._db.unlink()
-        for side in ("-journal", "-wal"):
-            self._db.with_name(self._db.name + side).unlink(missing_ok=True)
+
+    def close(self) -> None:
+        """Finish the bag; in file mode the plain ``.db3`` is removed only once ``metadata.yaml`` names the
+        ``.zstd`` (a process killed before leaves a ``.db3`` the reader recovers)."""
+        super().close()
+        if self.compression_mode == "FILE":
+            for name in (self._db.name, self._db.name + "-journal", self._db.name + "-wal"):
+                self._db.with_name(name).unlink(missing_ok=True)
 
     def flush(self) -> None:
         self.writer.conn.commit()
