@@ -11,9 +11,10 @@ plugin), written as ``ros2 bag record --compression-format zstd`` writes it:
   ``messages`` table; ``metadata.yaml`` says ``compression_format: zstd``, ``compression_mode: MESSAGE``.
   A killed run leaves a ``.db3`` of compressed messages (readable up to its last commit).
 * ``zstd-file`` (``--compression-mode file``): the ``.db3`` is written uncompressed, and on close
-  compressed to ``<name>.db3.zstd`` (the ``.db3`` removed); ``relative_file_paths`` names the ``.zstd``
-  file, ``files[].path`` keeps the ``.db3`` name (rosbag2's SequentialCompressionWriter changes only the
-  former), ``compression_mode: FILE``. A killed run leaves the plain ``.db3``.
+  compressed to ``<name>.db3.zstd`` (the ``.db3`` removed once ``metadata.yaml`` is written);
+  ``relative_file_paths`` names the ``.zstd`` file, ``files[].path`` keeps the ``.db3`` name (rosbag2's
+  SequentialCompressionWriter changes only the former), ``compression_mode: FILE``. A killed run leaves
+  the plain ``.db3``.
 
 Every metadata version seatwin writes (Humble's 5 and later) has both fields (since version 3).
 """
