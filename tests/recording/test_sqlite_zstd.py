@@ -330,6 +330,20 @@ def test_hostile_file_is_one_error_naming_it(tmp_path: Path, make, needle: str) 
     assert _digest(bag) == before
 
 
+def test_file_larger_than_the_free_disk_is_refused_before_inflating(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    import collections
+
+    import seatwin.recording.sqlite_zstd as sz
+
+    bag = _write(tmp_path / "run", "zstd-file")
+    usage = collections.namedtuple("usage", "total used free")
+    monkeypatch.setattr(sz.shutil, "disk_usage", lambda _p: usage(10**6, 10**6 - 100, 100))
+    with pytest.raises(InputError) as info:
+        _raw(bag)
+    msg = str(info.value)
+    assert "recording.db3.zstd" in msg and "more than the 100 bytes free" in msg, msg
+
+
 @pytest.mark.parametrize(
     ("field", "value", "needle"),
     [("compression_format", "lz4", "compression_format 'lz4' is not readable"), ("compression_mode", "CHUNK", "unknown")],

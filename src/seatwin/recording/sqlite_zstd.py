@@ -20,6 +20,7 @@ or file that inflates to many GiB exhausts memory or disk. Here rosbags only eve
 
 from __future__ import annotations
 
+import shutil
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path, PurePath
@@ -74,8 +75,8 @@ def bag_compression(bag: Path) -> str:
 def inflate_file(src: Path, dst: Path, budget: int) -> int:
     """Inflate the one zstd frame in ``src`` into the new file ``dst``, a piece at a time; its size.
 
-    Raises :class:`Inflated` when the output passes ``budget`` or the size the frame declares, when it
-    ends short of it, when the data are corrupt or when bytes follow the frame."""
+    Raises :class:`Inflated` when the output passes ``budget`` or the size the frame declares, when that size is
+    more than the disk holds free, when it ends short of it, when the data are corrupt or when bytes follow the frame."""
     zstd = zstd_module()
     with src.open("rb") as fin, dst.open("xb") as fout:
         head = fin.read(18)  # a frame header's largest size
@@ -87,6 +88,9 @@ def inflate_file(src: Path, dst: Path, budget: int) -> int:
             raise Inflated(f"corrupt zstd frame header: {exc}") from None
         if declared is not None and declared > budget:
             raise Inflated(f"declares {declared} bytes uncompressed, over the budget of {budget}")
+        free = shutil.disk_usage(dst.parent).free
+        if declared is not None and declared > free:
+            raise Inflated(f"declares {declared} bytes uncompressed, more than the {free} bytes free in {dst.parent.parent}")
         limit = budget if declared is None else declared
         d = zstd.ZstdDecompressor()
         feed, total = head, 0
