@@ -14,6 +14,9 @@ Bag size (issue #23): ``--compare none/raw,default`` runs the same simulation on
 times in turn (A B A B …, so a slow spell of a shared machine hits all alike), and prints per variant the bag
 size, the best wall time, the real-time factor and the process CPU time, and their ratios to the first
 variant: ``python benchmarks/simulate.py --sensors lidar,camera --preset vlp16 --compare none/raw,default``.
+A variant may name the bag format first, ``FORMAT:COMPRESSION/IMAGE_FORMAT`` (default mcap): rosbag2 SQLite3 with
+rosbag2's zstd, ``--compare sqlite3:none/raw,sqlite3:zstd/raw,sqlite3:zstd-file/raw``; ``--read`` adds the CPU time
+to read each bag's messages back (inflated, not decoded).
 """
 
 from __future__ import annotations
@@ -37,8 +40,9 @@ def main() -> None:
     ap.add_argument("--preset", default="vlp16-thesis")
     ap.add_argument("--sensors", default="lidar")
     ap.add_argument("--lidar-mode", default="raycast")
-    ap.add_argument("--compare", default=None, help="variants COMPRESSION/IMAGE_FORMAT or 'default', comma-separated")
+    ap.add_argument("--compare", default=None, help="variants [FORMAT:]COMPRESSION/IMAGE_FORMAT or 'default', comma-separated")
     ap.add_argument("--repeats", type=int, default=2)
+    ap.add_argument("--read", action="store_true", help="with --compare: also the CPU time to read each bag back")
     args = ap.parse_args()
     sc = builtin_scenario(args.scenario)
     if args.compare:
@@ -82,10 +86,11 @@ def main() -> None:
 
 def _run(sc: object, args: argparse.Namespace, variant: str) -> dict[str, float]:
     """One simulation with ``variant``'s compression and image format: wall, CPU time, RTF, bag size."""
-    extra = {}
+    extra: dict[str, str] = {}
     if variant != "default":
-        compression, image_format = variant.split("/")
-        extra = {"compression": compression, "image_format": image_format}
+        fmt, _, rest = variant.rpartition(":")
+        compression, image_format = rest.split("/")
+        extra = {"compression": compression, "image_format": image_format} | ({"fmt": fmt} if fmt else {})
     with tempfile.TemporaryDirectory() as tmp:
         cpu0 = time.process_time()
         res = simulate_scenario(
@@ -100,7 +105,22 @@ def _run(sc: object, args: argparse.Namespace, variant: str) -> dict[str, float]
         )
         cpu = time.process_time() - cpu0
         size = sum(p.stat().st_size for p in (Path(tmp) / "run").rglob("*") if p.is_file())
-    return {"wall_s": res.wall_s, "cpu_s": cpu, "rtf": res.realtime_factor, "recording_s": res.recording_s, "bag_mb": size / 1e6}
+        out = {"wall_s": res.wall_s, "cpu_s": cpu, "rtf": res.realtime_factor, "recording_s": res.recording_s}
+        out["bag_mb"] = size / 1e6
+        if args.read:
+            out["read_cpu_s"] = _read_cpu(Path(tmp) / "run")
+    return out
+
+
+def _read_cpu(run: Path) -> float:
+    """CPU seconds to open the run's bag and read every message's bytes (inflated, not decoded), and close it."""
+    from seatwin.recording import open_bag
+
+    cpu0 = time.process_time()
+    with open_bag(run) as rec:
+        for _ in rec.raw_messages():
+            pass
+    return time.process_time() - cpu0
 
 
 def compare(sc: object, args: argparse.Namespace) -> None:
@@ -123,13 +143,15 @@ def compare(sc: object, args: argparse.Namespace) -> None:
             "recording_s": round(min(x["recording_s"] for x in r), 3),
             "walls_s": [round(x["wall_s"], 2) for x in r],
         }
+        if "read_cpu_s" in r[0]:
+            best["read_cpu_s"] = round(min(x["read_cpu_s"] for x in r), 3)
         base = base or best
         best["size_ratio"] = round(best["bag_mb"] / base["bag_mb"], 4)
         best["rtf_ratio"] = round(best["realtime_factor"] / base["realtime_factor"], 3)
         best["cpu_ratio"] = round(best["cpu_s"] / base["cpu_s"], 3)
         table[v] = best
         print(
-            f"{v:>12}: {best['bag_mb']:8.2f} MB  RTF {best['realtime_factor']:6.2f} (x{best['rtf_ratio']:.3f})"
+            f"{v:>20}: {best['bag_mb']:8.2f} MB  RTF {best['realtime_factor']:6.2f} (x{best['rtf_ratio']:.3f})"
             f"  CPU {best['cpu_s']:.2f} s (x{best['cpu_ratio']:.3f})"
         )
     info = {"scenario": args.scenario, "sensors": args.sensors, "preset": args.preset, "duration_s": args.duration}

@@ -20,12 +20,18 @@ A bag is written in its distro's version."""
 DEFAULT_ROS_DISTRO: RosDistro = "humble"
 """The oldest supported LTS: Humble reads no metadata of version 9 (its QoS lists), and every later distro reads 5."""
 
-Compression = Literal["zstd", "lz4", "bz2", "none"]
-COMPRESSIONS: dict[str, tuple[str, ...]] = {"mcap": ("lz4", "zstd", "none"), "sqlite3": ("none",), "ros1": ("lz4", "bz2", "none")}
+Compression = Literal["zstd", "zstd-file", "lz4", "bz2", "none"]
+COMPRESSIONS: dict[str, tuple[str, ...]] = {
+    "mcap": ("lz4", "zstd", "none"),
+    "sqlite3": ("none", "zstd", "zstd-file"),
+    "ros1": ("lz4", "bz2", "none"),
+}
 """Bag format → the compressions seatwin writes, its default first: MCAP chunks (lz4, zstd), ROS 1 chunks (lz4,
-bz2; what ``rosbag record --lz4|--bz2`` writes). SQLite3: none (rosbag2's per-message zstd is not written yet).
-lz4 is MCAP's default because it meets both size and speed (the 30 s default run 75 MB at +6 % CPU over no
-compression, on a quiet 16-core host); zstd makes it 49 MB at +21 % CPU (docs/validation.md, "Bag size")."""
+bz2; what ``rosbag record --lz4|--bz2`` writes), SQLite3 rosbag2's own zstd compression (``zstd``: each message,
+``ros2 bag record --compression-mode message --compression-format zstd``; ``zstd-file``: the whole ``.db3`` once
+it is closed, ``--compression-mode file``; none by default, as rosbag2's). lz4 is MCAP's default because it meets
+both size and speed (the 30 s default run 75 MB at +6 % CPU over no compression, on a quiet 16-core host); zstd
+makes it 49 MB at +21 % CPU (docs/validation.md, "Bag size")."""
 DEFAULT_COMPRESSION: dict[str, str] = {fmt: names[0] for fmt, names in COMPRESSIONS.items()}
 """The compression a bag gets when none is asked for: lz4 (MCAP, ROS 1), none (SQLite3)."""
 ZSTD_LEVEL = 1

@@ -29,6 +29,8 @@ COMBOS = [
     ("mcap", "lz4"),
     ("mcap", "none"),
     ("sqlite3", "none"),
+    ("sqlite3", "zstd"),
+    ("sqlite3", "zstd-file"),
     ("ros1", "lz4"),
     ("ros1", "bz2"),
     ("ros1", "none"),
@@ -110,7 +112,8 @@ def test_defaults_are_lz4_for_mcap_and_ros1(tmp_path: Path) -> None:
             files = [rec.bag] if rec.bag.is_file() else [p for p in rec.bag.rglob("*") if p.is_file()]
         info = bag_info(tmp_path / fmt)
         assert info["size_bytes"] == sum(p.stat().st_size for p in files)
-        assert f"MB  ({want} chunks, raw images)" in format_info(info)
+        label = "uncompressed" if fmt == "sqlite3" else f"{want} chunks"
+        assert f"MB  ({label}, raw images)" in format_info(info)
 
 
 @pytest.mark.parametrize(
@@ -118,7 +121,8 @@ def test_defaults_are_lz4_for_mcap_and_ros1(tmp_path: Path) -> None:
     [
         ({"fmt": "mcap", "compression": "bz2"}, "compression", "expected one of lz4, zstd, none"),
         ({"fmt": "ros1", "compression": "zstd"}, "compression", "expected one of lz4, bz2, none"),
-        ({"fmt": "sqlite3", "compression": "zstd"}, "compression", "expected one of none"),
+        ({"fmt": "sqlite3", "compression": "lz4"}, "compression", "expected one of none, zstd, zstd-file"),
+        ({"fmt": "mcap", "compression": "zstd-file"}, "compression", "expected one of lz4, zstd, none"),
         ({"fmt": "mcap", "image_format": "gif"}, "image_format", "expected one of raw, jpeg, png"),
     ],
 )

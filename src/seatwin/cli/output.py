@@ -44,16 +44,17 @@ def overwrite_option() -> Any:
 
 
 COMPRESSION_HELP = (
-    "Chunk compression of the bag: mcap lz4 (default), zstd (level 1) or none; ros1 lz4 (default), bz2 or none; "
-    "sqlite3 none. Every reader (seatwin, rosbags, mcap, ROS tools) reads them."
+    "Compression of the bag: mcap chunks lz4 (default), zstd (level 1) or none; ros1 chunks lz4 (default), bz2 or none; "
+    "sqlite3 none (default), zstd (rosbag2's per-message zstd) or zstd-file (the whole .db3 as .db3.zstd). "
+    "Every reader (seatwin, rosbags, mcap, ROS tools) reads them."
 )
 
 
 def compression_option() -> Any:
-    """``--compression lz4|zstd|bz2|none`` of every verb that writes a bag (default: the format's own)."""
+    """``--compression lz4|zstd|zstd-file|bz2|none`` of every verb that writes a bag (default: the format's own)."""
     import typer
 
-    return typer.Option(None, "--compression", metavar="lz4|zstd|bz2|none", help=COMPRESSION_HELP)
+    return typer.Option(None, "--compression", metavar="lz4|zstd|zstd-file|bz2|none", help=COMPRESSION_HELP)
 
 
 def image_format_option() -> Any:

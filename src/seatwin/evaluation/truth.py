@@ -128,7 +128,7 @@ def truth_from_scenario(scenario) -> TruthSet:  # noqa: ANN001 - seatwin.scenari
 
 def _is_recording(path: Path) -> bool:
     """A bag file, or a folder (our run directory or a rosbag2 directory); scenarios are files or names."""
-    return path.suffix.lower() in RECORDING_SUFFIXES or path.is_dir()
+    return path.suffix.lower() in RECORDING_SUFFIXES or path.name.lower().endswith(".db3.zstd") or path.is_dir()
 
 
 def truth_from_scenario_file(path: Path) -> dict[str, VesselTruth]:
@@ -206,7 +206,8 @@ def targets_truth(vessels: dict[str, VesselTruth], source: str) -> TruthSet:
 
 
 def load_truth(spec: str | os.PathLike[str]) -> TruthSet:
-    """Ground truth from a scenario (file or built-in name) or a recording (``.mcap``/``.bag``/``.db3`` or a folder)."""
+    """Ground truth from a scenario (file or built-in name) or a recording (``.mcap``, ``.bag``, ``.db3``, ``.db3.zstd``
+    or a folder)."""
     from seatwin.scenario.load import load_scenario
 
     path = Path(spec)

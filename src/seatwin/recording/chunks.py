@@ -80,14 +80,19 @@ def _decompressor(kind: str) -> Any:
     raise Inflated(f"unknown compression {kind!r}; expected bz2, lz4 or zstd")
 
 
-def inflate_pieces(kind: str, data: bytes | memoryview, declared: int, budget: int) -> Iterator[bytes]:
+def inflate_pieces(
+    kind: str, data: bytes | memoryview, declared: int | None, budget: int, unit: str = "chunk"
+) -> Iterator[bytes]:
     """The output of ``data`` (compressed with ``kind``) in pieces of at most :data:`PIECE` bytes.
 
     Raises :class:`Inflated` as soon as the output passes ``declared`` or ``budget`` bytes, when it
-    ends short of ``declared``, or when the stream is corrupt.
+    ends short of ``declared``, or when the stream is corrupt. ``declared`` None: the data do not say
+    their size (a zstd frame without content size), only ``budget`` bounds them. ``unit`` names what
+    ``budget`` is per (a chunk, a message, a file) in the messages.
     """
-    if declared > budget:
-        raise Inflated(f"declares {declared} bytes uncompressed, over the per-chunk budget of {budget}")
+    if declared is not None and declared > budget:
+        raise Inflated(f"declares {declared} bytes uncompressed, over the per-{unit} budget of {budget}")
+    limit = budget if declared is None else declared
     d = _decompressor(kind)
     total = 0
     feed: bytes | memoryview = data
@@ -96,17 +101,19 @@ def inflate_pieces(kind: str, data: bytes | memoryview, declared: int, budget: i
             piece = d.decompress(feed, PIECE)
             feed = b""
             total += len(piece)
-            if total > declared:
+            if total > limit:
+                if declared is None:
+                    raise Inflated(f"inflates beyond the per-{unit} budget of {budget} bytes")
                 raise Inflated(f"inflates beyond the {declared} bytes it declares")
             if piece:
                 yield piece
             if d.eof:
                 break
             if not piece and d.needs_input:
-                raise Inflated(f"compressed stream ends early ({total} of {declared} bytes)")
+                raise Inflated(f"compressed stream ends early ({total} of {declared if declared is not None else '?'} bytes)")
     except Inflated:
         raise
     except (OSError, ValueError, EOFError, RuntimeError, MemoryError) as exc:  # bz2/zstd/lz4 on corrupt input
         raise Inflated(f"corrupt {kind} data: {type(exc).__name__}: {' '.join(str(exc).split())[:200]}") from None
-    if total != declared:
+    if declared is not None and total != declared:
         raise Inflated(f"inflates to {total} bytes, but declares {declared}")

@@ -9,6 +9,7 @@ from typing import Any
 
 from seatwin.recording.chunks import ReadOptions
 from seatwin.recording.reader import Recording
+from seatwin.recording.sqlite_zstd import bag_compression
 
 
 def _iso(ns: int | None) -> str | None:
@@ -60,13 +61,20 @@ def bag_info(path: str | os.PathLike[str], scan: bool = True, ignore_crc: bool =
             "truncated": rec.truncated,
             "bad_crc": rec.bad_crc,
             "size_bytes": _size(Path(rec.bag)),
-            "compression": m.get("compression"),
+            "compression": m.get("compression") or _sqlite_compression(rec),
             "image_format": m.get("image_format"),
             "seatwin_version": m.get("seatwin_version"),
             "seed": m.get("seed"),
             "error": m.get("error"),
             "topics": topics,
         }
+
+
+def _sqlite_compression(rec: Recording) -> str | None:
+    """A foreign rosbag2 SQLite3 folder's compression as ``--compression`` names it (None for other bags)."""
+    if rec.format != "sqlite3" or not Path(rec.bag).is_dir():
+        return None
+    return {"none": "none", "message": "zstd", "file": "zstd-file"}[bag_compression(Path(rec.bag))]
 
 
 def _size(bag: Path) -> int:
@@ -91,7 +99,9 @@ def format_info(d: dict[str, Any]) -> str:
         f"complete:  {state}",
     ]
     if d.get("size_bytes") is not None:
-        how = [f"{d['compression']} chunks"] if d.get("compression") else []
+        sqlite = {"zstd": "zstd per message", "zstd-file": "zstd file", "none": "uncompressed"}
+        comp = d.get("compression")
+        how = [(sqlite.get(comp, comp) if d["format"] == "sqlite3" else f"{comp} chunks")] if comp else []
         how += [f"{d['image_format']} images"] if d.get("image_format") else []
         lines.append(f"size:      {d['size_bytes'] / 1e6:.1f} MB" + (f"  ({', '.join(how)})" if how else ""))
     if d.get("seatwin_version"):

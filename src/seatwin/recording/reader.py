@@ -34,6 +34,7 @@ from seatwin.recording.messages import StaticTransform
 from seatwin.recording.pointcloud import unpack
 from seatwin.recording.ros1_check import check_ros1
 from seatwin.recording.sqlite_check import ReadableDb, check_sqlite
+from seatwin.recording.sqlite_zstd import InflatingBackend, StagedBag, bag_compression
 
 POINTCLOUD2 = "sensor_msgs/msg/PointCloud2"
 IMAGE = "sensor_msgs/msg/Image"
@@ -125,6 +126,8 @@ def _find_bag(path: Path) -> tuple[Path, str, Path | None]:
     if not path.exists():
         raise InputError(path, "no such file or directory")
     if path.is_file():
+        if path.name.endswith(".db3.zstd") and (path.parent / "metadata.yaml").is_file():
+            return _find_bag(path.parent)  # a file-compressed SQLite3 file: read through its rosbag2 folder
         fmt = {".bag": "ros1", ".mcap": "mcap", ".db3": "sqlite3"}.get(path.suffix)
         if fmt is None:
             raise InputError(path, "not a bag: expected a .bag, .mcap or .db3 file, a rosbag2 directory or a run directory")
@@ -168,11 +171,12 @@ def _rosbag2_dir_format(path: Path) -> str:
     return m.group(1) if m else "unknown"
 
 
-def _open_backend(bag: Path, fmt: str, options: ReadOptions, keep: list[ReadableDb]) -> tuple[B.Backend, int]:
+def _open_backend(bag: Path, fmt: str, options: ReadOptions, keep: list[ReadableDb | StagedBag]) -> tuple[B.Backend, int]:
     """The backend for ``bag`` and the number of chunks read despite a bad CRC (``options.ignore_crc``).
     Every storage file is checked first (MCAP structure, chunks and CRCs; ROS 1 chunks; SQLite3
-    cells); a SQLite3 copy made to roll back a hot journal is appended to ``keep`` (closed with the
-    recording)."""
+    cells; rosbag2's zstd compression inflated within the budgets); a SQLite3 copy made to roll back a
+    hot journal or a staged folder of a compressed rosbag2 (:mod:`~seatwin.recording.sqlite_zstd`) is
+    appended to ``keep`` (closed with the recording)."""
     from rosbags.rosbag1 import ReaderError as Reader1Error
     from rosbags.rosbag2 import ReaderError as Reader2Error
 
@@ -185,9 +189,20 @@ def _open_backend(bag: Path, fmt: str, options: ReadOptions, keep: list[Readable
             return B.Ros1ScanBackend(bag, options), 0
     if fmt not in ("mcap", "sqlite3"):
         raise InputError(bag, f"unsupported rosbag2 storage {fmt!r}; expected mcap or sqlite3")
+    compression = bag_compression(bag) if fmt == "sqlite3" and bag.is_dir() else "none"
+    if compression == "file":  # inflated into a staged folder, within the budgets, before rosbags sees it
+        staged = StagedBag(bag, "file", options)
+        keep.append(staged)
+        for db, source in staged.files:
+            check_sqlite(db, source=source)
+        try:
+            return B.RosbagsBackend(staged.path, fmt), 0
+        except errors as exc:
+            raise InputError(bag, f"unreadable SQLite3 bag: {_what(exc)}") from None
     storage = [bag] if bag.is_file() else sorted(bag.glob("*.mcap" if fmt == "mcap" else "*.db3"))
     bad_crc = 0
     journaled = False
+    dbs: list[ReadableDb] = []
     if fmt == "mcap":
         for f in storage:
             bad_crc += check_mcap(f, options).bad_crc  # before any MCAP reader trusts a length field (issue #14)
@@ -195,6 +210,7 @@ def _open_backend(bag: Path, fmt: str, options: ReadOptions, keep: list[Readable
         for f in storage:
             db = ReadableDb(f)  # never written: a hot journal is rolled back in a copy
             keep.append(db)
+            dbs.append(db)
             journaled = journaled or db.copied
             check_sqlite(db.path, source=f)
     if bad_crc:  # rosbags refuses a chunk whose CRC differs; mcap's stream reader reads it
@@ -203,6 +219,10 @@ def _open_backend(bag: Path, fmt: str, options: ReadOptions, keep: list[Readable
         return B.McapScanBackend(storage[0], options), bad_crc
     if bag.is_dir() and (bag / "metadata.yaml").exists() and not journaled:
         try:
+            if compression == "message":  # rosbags reads the frames from a staged folder; they are inflated here
+                staged = StagedBag(bag, "message", options, {db.original.name: db.path for db in dbs})
+                keep.append(staged)
+                return InflatingBackend(B.RosbagsBackend(staged.path, fmt), bag, options), 0
             return B.RosbagsBackend(bag, fmt), 0
         except errors:
             pass
@@ -211,13 +231,15 @@ def _open_backend(bag: Path, fmt: str, options: ReadOptions, keep: list[Readable
     if len(storage) > 1:
         raise InputError(bag, "a split rosbag2 without metadata.yaml cannot be recovered (several storage files)")
     try:
-        backend = B.RosbagsBackend(keep[0].path if keep else storage[0], fmt)
+        backend: B.Backend = B.RosbagsBackend(dbs[0].path if dbs else storage[0], fmt)
         backend.recovered = bag.is_dir() or journaled
-        return backend, 0
     except errors as exc:
         if fmt == "mcap":
             return B.McapScanBackend(storage[0], options), 0
         raise InputError(storage[0], f"unreadable SQLite3 bag: {_what(exc)}") from None
+    if fmt == "sqlite3":  # messages a killed run compressed (no metadata.yaml says so): zstd frames inflated
+        backend = InflatingBackend(backend, storage[0], options, strict=compression == "message")
+    return backend, 0
 
 
 class Recording:
@@ -231,7 +253,7 @@ class Recording:
         self.options = options or ReadOptions.from_env()
         self.bag, self.format, self.run_dir = _find_bag(self.path)
         self.manifest = read_manifest(self.run_dir) if self.run_dir else None
-        self._dbs: list[ReadableDb] = []
+        self._dbs: list[ReadableDb | StagedBag] = []
         try:
             self._b, self.bad_crc = _open_backend(self.bag, self.format, self.options, self._dbs)
         except InputError:

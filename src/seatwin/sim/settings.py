@@ -24,8 +24,9 @@ class BagOptions(Settings):
 
     compression: Compression | None = Field(
         None,
-        description="Chunk compression of the bag: mcap lz4 (default), zstd or none; ros1 lz4 (default), bz2 or "
-        "none; sqlite3 none. None: the format's default.",
+        description="Compression of the bag: mcap chunks lz4 (default), zstd or none; ros1 chunks lz4 (default), bz2 "
+        "or none; sqlite3 none (default), zstd (rosbag2's per-message zstd) or zstd-file (the .db3 file as .db3.zstd). "
+        "None: the format's default.",
     )
     image_format: ImageFormat = Field(
         DEFAULT_IMAGE_FORMAT,

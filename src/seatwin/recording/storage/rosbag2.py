@@ -64,6 +64,10 @@ class Rosbag2Storage(BagStorage):
 
     plugin: ClassVar[Any]
     """The rosbags storage writer class (``McapWriter``, ``Sqlite3Writer`` or a subclass); :attr:`writer` is the open one."""
+    compression_format: str = ""
+    """``metadata.yaml``'s ``compression_format``: ``zstd`` for rosbag2's own (file or message) compression, else empty."""
+    compression_mode: str = ""
+    """``metadata.yaml``'s ``compression_mode``: ``MESSAGE`` or ``FILE`` (as rosbag2 writes them), else empty."""
 
     def __init__(
         self,
@@ -175,8 +179,8 @@ class Rosbag2Storage(BagStorage):
             "starting_time": {"nanoseconds_since_epoch": start},
             "message_count": count,
             "topics_with_message_count": topics,
-            "compression_format": "",
-            "compression_mode": "",
+            "compression_format": self.compression_format,
+            "compression_mode": self.compression_mode,
             "files": [
                 {
                     "path": name,
@@ -195,10 +199,14 @@ class Rosbag2Storage(BagStorage):
         info = self.metadata()
         self.writer.close(self.version, _dump_metadata(info).strip())
         self.writer = None
+        self._finish_files()
         meta = self.path / "metadata.yaml"
         tmp = meta.with_suffix(".yaml.tmp")
         tmp.write_text(_dump_metadata({"rosbag2_bagfile_information": info}), "utf8")
         os.replace(tmp, meta)
+
+    def _finish_files(self) -> None:
+        """After the storage file is closed and before ``metadata.yaml`` is written (file compression)."""
 
     def abort(self) -> None:
         writer, self.writer = self.writer, None
