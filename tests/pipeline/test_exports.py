@@ -37,6 +37,7 @@ VERB_CALLS: dict[str, tuple[str, ...]] = {
     "camera snapshot": ("camera_snapshot",),
     "labels export": ("export_coco",),
     "radar fit": ("fit_radar_to_recording", "save_radar_config"),
+    "lidar fit": ("fit_lidar_to_recording", "save_lidar_config"),
     "radar simulate": ("simulate_radar",),
     "sweep": ("run_sweep", "write_sweep"),
     "campaign": ("run_campaign",),
