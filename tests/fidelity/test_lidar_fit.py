@@ -98,6 +98,9 @@ def test_bad_input_is_one_clear_error(tmp_path, capsys):
         fit_lidar_to_recording(tmp_path / "nothing", "ferry_crossing")
     with pytest.raises(ParameterError, match="every"):
         fit_lidar_to_recording(tmp_path, "ferry_crossing", every=0)
+    with pytest.raises(ParameterError, match="unknown range model") as err:
+        fit_lidar_to_recording(tmp_path, "ferry_crossing", lidar_mode="lasers")
+    assert err.value.param == "lidar_mode"
     # A recording with a radar but no lidar topic.
     sc = builtin_scenario("ferry_crossing")
     simulate_scenario(sc, tmp_path / "radar", duration=3.0, progress=False, sensors=("radar",))

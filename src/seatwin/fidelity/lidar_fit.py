@@ -366,7 +366,10 @@ def fit_lidar_to_recording(
     from seatwin.recording import open_bag
     from seatwin.scenario.load import load_scenario
     from seatwin.sensors.lidar_config import VLP16, load_lidar_config
+    from seatwin.sensors.rangemodel import range_model_names
 
+    if lidar_mode not in range_model_names():
+        raise ParameterError("lidar_mode", f"unknown range model {lidar_mode!r}; known: {', '.join(range_model_names())}")
     if every < 1:
         raise ParameterError("every", f"expected 1 or more (use every n-th sweep), got {every}")
     if seeds < 1:
@@ -396,7 +399,8 @@ def fit_lidar_to_recording(
     sc = load_scenario(str(scenario))
     times = np.array([s.time for s in scans])
     t0 = times[0] + start_offset
-    keep = (times >= t0) & ((times < t0 + duration) if duration is not None else True) & (times >= sc.start) & (times <= sc.end)
+    keep = (times >= t0) & ((times < t0 + duration) if duration is not None else True)
+    keep &= (times >= sc.start) & (times <= sc.end - cfg.period)
     if not keep.any():
         raise ParameterError(
             "start_offset",
