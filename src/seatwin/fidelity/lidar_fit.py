@@ -9,7 +9,8 @@ recording by the score's own combined distance (:func:`seatwin.evaluation.lidar_
 fit is the candidate with the smallest distance, so fit and score agree by construction.
 
 Search (:func:`fit_lidar`): a coarse grid over the three parameters, then rounds of a 1-D refinement per
-parameter around the best candidate (the others held), each round halving the step. Every candidate is
+parameter around the best candidate (the others held), plus joint moves of ray drop and half range (they trade
+off: one-at-a-time moves stall on their ridge), each round halving the step. Every candidate is
 simulated with the same seeds (common random numbers: the distance changes smoothly with the parameters).
 Intervals: block bootstrap of the terms (:func:`bootstrap_best`): each replicate resamples the real and the
 simulated scans in circular blocks (the score's block rule), takes the candidate nearest to it among all
@@ -221,6 +222,22 @@ def _move(name: str, value: float, step: float) -> float:
     return float(np.clip(v, lo, hi))
 
 
+RIDGE = ("drop_probability", "dissipation_half_range_m")
+"""The pair that trades off (more drop and a shorter half range both thin the returns: one makes up for the other):
+the refinement also moves them together, along and across their ridge, where one-at-a-time moves stall."""
+PASSES = 3
+"""At most this many passes of the moves per refinement round, while a pass still improves (to follow the ridge)."""
+
+
+def _moves(step: dict[str, float]) -> list[dict[str, float]]:
+    """One pass of the refinement: ±1, ±2 steps of each parameter alone, then of the :data:`RIDGE` pair together
+    (both signs alike and opposite)."""
+    out = [{name: m * step[name]} for name in PARAMETERS for m in (-2, -1, 1, 2)]
+    a, b = RIDGE
+    out += [{a: m * step[a], b: sign * m * step[b]} for m in (-2, -1, 1, 2) for sign in (1, -1)]
+    return out
+
+
 def fit_lidar(
     real: Sequence[dict[str, LidarReturnSample]],
     setup: FitSetup,
@@ -234,8 +251,9 @@ def fit_lidar(
 ) -> LidarFit:
     """Fit :data:`PARAMETERS` of ``base`` so that the simulated returns (``setup``) are nearest to the ``real`` ones
     (runs of target → :class:`LidarReturnSample`) in the lidar sensor-level distance: the coarse grid
-    :data:`COARSE`, then ``rounds`` rounds of a 1-D refinement per parameter (±1, ±2 steps about the best; the
-    step halves each round). Intervals from ``n_boot`` block-bootstrap replicates (module docstring; ``seed``).
+    :data:`COARSE`, then ``rounds`` rounds of refinement (:func:`_moves`: ±1, ±2 steps of each parameter about the
+    best, and of the :data:`RIDGE` pair together; up to :data:`PASSES` passes while one improves; the step halves
+    each round). Intervals from ``n_boot`` block-bootstrap replicates (module docstring; ``seed``).
     Deterministic for the same inputs. ``progress(n)`` is called after each candidate."""
     from seatwin.evaluation.bootstrap import runs_block_length
     from seatwin.evaluation.lidar_terms import _flatten, combined_distance
@@ -273,11 +291,14 @@ def fit_lidar(
         raise InputError(setup.truth.source, f"no lidar term has {n_min} values in both the recording and the simulation")
     step = dict(FIRST_STEP)
     for _ in range(rounds):
-        for name in PARAMETERS:
-            for m in (-2, -1, 1, 2):
-                c = evaluate({**best.params, name: _move(name, best.params[name], m * step[name])})
+        for _ in range(PASSES):
+            start = best
+            for move in _moves(step):
+                c = evaluate({k: _move(k, best.params[k], move.get(k, 0.0)) for k in PARAMETERS})
                 if c.distance < best.distance:
                     best = c
+            if best is start:
+                break
         step = {k: v / 2 for k, v in step.items()}
     cands = list(tried.values())
     # The score's block rule (lidar_returns_score): from the real series' detection indicator and point count.
