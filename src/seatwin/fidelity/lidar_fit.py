@@ -219,7 +219,7 @@ def _key(params: dict[str, float]) -> tuple[float, ...]:
 def _move(name: str, value: float, step: float) -> float:
     lo, hi = BOUNDS[name]
     v = float(np.exp(np.log(value) + step)) if LOG_SCALE[name] else value + step
-    return float(np.clip(v, lo, hi))
+    return float(f"{np.clip(v, lo, hi):.6g}")  # 6 digits: 0.8, not 0.7999999999999999
 
 
 RIDGE = ("drop_probability", "dissipation_half_range_m")
