@@ -113,6 +113,7 @@ def test_simulate_defaults_equal_the_settings_defaults() -> None:
     fields = SimulationSettings.model_fields
     names = {"camera_hfov": "camera_hfov_deg", "fmt": "fmt", "lidar_mode": "lidar_mode", "lidar_preset": "lidar_preset"}
     names |= {"dissipation": "dissipation", "ray_drop": "ray_drop", "range_noise": "range_noise", "seed": "seed"}
+    names |= {"lidar": "lidar_config", "radar": "radar_config"}
     for param, field in names.items():
         default = _cli_default("simulate", param)
         default = getattr(default, "value", default)
