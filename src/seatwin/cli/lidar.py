@@ -78,8 +78,8 @@ _FIT_HELP = (
     "RECORDING is a run directory or bag with a lidar PointCloud2 topic and the ownship's ground truth; SCENARIO the "
     "scenario that made it (default: the one beside it). Candidate models are simulated along it at the recording's "
     "sweep instants and clustered as the recording is; the fit is the candidate nearest to the recording (a coarse "
-    "grid, then a 1-D refinement per parameter). Intervals: block bootstrap of the terms. Writes a lidar YAML that "
-    "'seatwin simulate --lidar' reads, with the report under 'fit'."
+    "grid, then a refinement of each parameter, and of drop and dissipation together). Intervals: block bootstrap "
+    "of the terms. Writes a lidar YAML that 'seatwin simulate --lidar' reads, with the report under 'fit'."
 )
 
 
@@ -102,7 +102,7 @@ def register_fit(lidar_app: typer.Typer) -> None:
         duration: float = typer.Option(20.0, "--duration", help="Fit this many seconds of sweeps."),
         every: int = typer.Option(1, "--every", min=1, help="Use every n-th sweep (a longer span at the same cost)."),
         seeds: int = typer.Option(2, "--seeds", min=1, help="Seeds each candidate is simulated with."),
-        rounds: int = typer.Option(2, "--rounds", min=0, help="Rounds of the 1-D refinement after the coarse grid."),
+        rounds: int = typer.Option(2, "--rounds", min=0, help="Rounds of refinement after the coarse grid."),
         boot: int = typer.Option(200, "--boot", min=0, help="Bootstrap resamples for the intervals (0: none)."),
         seed: int = typer.Option(0, "--seed", help="First seed of the candidates and seed of the bootstrap."),
         overwrite: bool = overwrite_option(),

@@ -200,7 +200,8 @@ class LidarFit:
     def report(self) -> dict[str, Any]:
         """What is written under ``fit:`` beside the fitted configuration."""
         return {
-            "method": "lidar sensor-level distance (S7), coarse grid + 1-D refinement; intervals: block bootstrap of the terms",
+            "method": "lidar sensor-level distance (S7), coarse grid + refinement (1-D and drop/half range together); "
+            "intervals: block bootstrap of the terms",
             "parameters": self.parameters,
             "distance": self.distance,
             "terms": self.terms,
