@@ -194,15 +194,16 @@ def test_plain_values_with_a_no_break_space_are_refused() -> None:
 
 
 def test_every_user_yaml_goes_through_the_loader(tmp_path: Path) -> None:
-    """Tuning, radar and raster YAML files refuse the bomb like scenario and campaign files do."""
+    """Tuning, radar, lidar and raster YAML files refuse the bomb like scenario and campaign files do."""
     from seatwin.layout import read_land_raster
+    from seatwin.sensors.lidar_config import load_lidar_config
     from seatwin.sensors.radar.config import load_radar_config
     from seatwin.tracking import load_tuning
 
     bomb = tmp_path / "bomb.yaml"
     bomb.write_text(BILLION_LAUGHS)
     (tmp_path / "bomb.bin").write_bytes(b"\x01")
-    for load in (load_tuning, load_radar_config, read_land_raster):
+    for load in (load_tuning, load_radar_config, load_lidar_config, read_land_raster):
         with pytest.raises(InputError, match=r"line 1, column 4: anchor &a"):
             load(bomb)
     deep = tmp_path / "deep.json"

@@ -37,6 +37,7 @@ VERB_CALLS: dict[str, tuple[str, ...]] = {
     "camera snapshot": ("camera_snapshot",),
     "labels export": ("export_coco",),
     "radar fit": ("fit_radar_to_recording", "save_radar_config"),
+    "lidar fit": ("fit_lidar_to_recording", "save_lidar_config"),
     "radar simulate": ("simulate_radar",),
     "sweep": ("run_sweep", "write_sweep"),
     "campaign": ("run_campaign",),
@@ -112,6 +113,7 @@ def test_simulate_defaults_equal_the_settings_defaults() -> None:
     fields = SimulationSettings.model_fields
     names = {"camera_hfov": "camera_hfov_deg", "fmt": "fmt", "lidar_mode": "lidar_mode", "lidar_preset": "lidar_preset"}
     names |= {"dissipation": "dissipation", "ray_drop": "ray_drop", "range_noise": "range_noise", "seed": "seed"}
+    names |= {"lidar": "lidar_config", "radar": "radar_config"}
     for param, field in names.items():
         default = _cli_default("simulate", param)
         default = getattr(default, "value", default)

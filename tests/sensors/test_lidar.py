@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from seatwin.errors import InputError
 from seatwin.scenario.model import Role, Scenario, Trajectory, Vessel
@@ -293,3 +295,54 @@ def test_batched_sweeps_equal_single_sweeps() -> None:
     assert lid.sweeps([]) == []
     with pytest.raises(InputError, match="frame numbers"):
         lid.sweeps(starts, [1])
+
+
+@settings(max_examples=8, deadline=None)
+@given(
+    drop=st.floats(0.0, 0.95),
+    sigma=st.floats(0.0, 0.2),
+    half=st.one_of(st.none(), st.floats(5.0, 80.0)),
+    seed=st.integers(0, 50),
+)
+def test_redrawn_ranged_beams_equal_a_direct_simulation(drop, sigma, half, seed) -> None:
+    # The lidar fit ranges every beam once and redraws drop, dissipation and noise per candidate: the points must be
+    # those of simulating that candidate directly, bit for bit (raycast), the carrier's own returns included.
+    sc = moving_scenario(3.0)
+    scene = Scene.from_scenario(sc)
+    mount = LidarMount(x=0.0, y=0.0, z=-3.0, yaw_deg=30.0, roll_deg=180.0)
+    ranged = Lidar(scene, VLP16, mount, platform="own", seed=seed).ranged([T0 + 0.5, T0 + 0.6], [5, 6])
+    diss = None if half is None else RangeDissipation(half_range=half, width=5.0)
+    lid = Lidar(scene, VLP16.with_(drop_probability=drop, range_accuracy=2 * sigma, dissipation=diss), mount, "own", seed=seed)
+    direct, redrawn = lid.sweeps([T0 + 0.5, T0 + 0.6], [5, 6]), lid.redraw(ranged)
+    for a, b in zip(direct, redrawn, strict=True):
+        assert (a.stamp, a.frame) == (b.stamp, b.frame)
+        for field in ("x", "y", "z", "intensity", "ring", "time", "object_id"):
+            np.testing.assert_array_equal(getattr(a, field), getattr(b, field))
+    assert sum(len(s) for s in direct) > 0 or drop > 0.9
+
+
+def test_redraw_refuses_beams_of_another_lidar() -> None:
+    sc = moving_scenario(2.0)
+    scene = Scene.from_scenario(sc)
+    ranged = Lidar(scene, VLP16, platform="own").ranged([T0 + 0.5], [5])
+    with pytest.raises(InputError, match="beam pattern or mount"):
+        Lidar(scene, VLP16_THESIS, platform="own").redraw(ranged)
+    with pytest.raises(InputError, match="frame numbers"):
+        Lidar(scene, VLP16, platform="own").ranged([T0 + 0.5], [5, 6])
+
+
+def test_lidar_yaml_round_trip_and_bad_field(tmp_path) -> None:
+    from seatwin.sensors.lidar_config import load_lidar_config, save_lidar_config
+
+    cfg = VLP16.with_(drop_probability=0.63, range_accuracy=0.07, dissipation=RangeDissipation(half_range=47.0))
+    path = save_lidar_config(cfg, tmp_path / "l.yaml", {"note": "a report"})
+    assert load_lidar_config(path) == cfg
+    (tmp_path / "bad.yaml").write_text("lidar:\n  drop_probability: 1.5\n", encoding="utf-8")
+    with pytest.raises(InputError, match="drop_probability") as err:
+        load_lidar_config(tmp_path / "bad.yaml")
+    assert "bad.yaml" in str(err.value)
+    (tmp_path / "list.yaml").write_text("- 1\n", encoding="utf-8")
+    with pytest.raises(InputError, match="mapping"):
+        load_lidar_config(tmp_path / "list.yaml")
+    with pytest.raises(InputError, match="no such"):
+        load_lidar_config(tmp_path / "none.yaml")

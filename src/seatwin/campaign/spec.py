@@ -34,7 +34,7 @@ from seatwin.sim.settings import SimulationSettings
 
 NOT_VARIED = ("seed", "fmt", "radar_spokes")
 """SimulationSettings fields a campaign does not vary: the seed is the campaign's own, the others do not change results."""
-PATH_SETTINGS = ("radar_config", "harbour")
+PATH_SETTINGS = ("radar_config", "lidar_config", "harbour")
 """SimulationSettings fields that may name a file (relative to the campaign file)."""
 DEFAULT_REFERENCE_SEED_OFFSET = 1000
 
@@ -143,7 +143,7 @@ def _resolve(value: Any, base: Path) -> Any:
 def load_campaign(path: str | os.PathLike[str]) -> CampaignSpec:
     """Read and validate a campaign YAML; an :class:`InputError` names the file, line or field.
 
-    Scenario files, tuning files and the file-valued settings (``radar_config``, ``harbour``) are
+    Scenario files, tuning files and the file-valued settings (``radar_config``, ``lidar_config``, ``harbour``) are
     relative to the campaign file and are made absolute here, so every job names the same file.
     """
     path = Path(path)

@@ -40,6 +40,7 @@ FLAG_OF: dict[str, str] = {
     "plots_csv": "--out",
     "run_dir": "--out-bag",
     "radar_config": "--radar",
+    "lidar_config": "--lidar",
     "n_boot": "--boot",
     "seed0": "--seed",
     "max_step_s": "--max-step",

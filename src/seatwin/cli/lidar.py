@@ -1,4 +1,4 @@
-"""``seatwin lidar``: simulate the ownship's lidar (VLP-16 on milliAmpere's rig) along a scenario."""
+"""``seatwin lidar``: simulate the ownship's lidar (VLP-16 on milliAmpere's rig) along a scenario; fit it to a recording."""
 
 from __future__ import annotations
 
@@ -11,7 +11,9 @@ from seatwin.cli.output import overwrite_option
 
 
 def register(app: typer.Typer) -> None:
-    lidar_app = typer.Typer(help="Simulate the ownship's lidar along a scenario.", no_args_is_help=True)
+    lidar_app = typer.Typer(
+        help="Simulate the ownship's lidar along a scenario; fit its model to a recording.", no_args_is_help=True
+    )
     app.add_typer(lidar_app, name="lidar")
 
     @lidar_app.command("snapshot")
@@ -65,3 +67,70 @@ def register(app: typer.Typer) -> None:
             overwrite=overwrite,
         )
         typer.echo(f"wrote {snap.path} ({snap.n_points} points)")
+
+    register_fit(lidar_app)
+
+
+_FIT_HELP = (
+    "Fit the lidar model's range noise σ, ray-drop probability and range dissipation to a recording with ground truth, "
+    "each with a 95 % interval, by the lidar sensor-level distance of the fidelity score (S7: Pd, points per return, "
+    "depth, width and thickness of each target's returns per range band).\n\n"
+    "RECORDING is a run directory or bag with a lidar PointCloud2 topic and the ownship's ground truth; SCENARIO the "
+    "scenario that made it (default: the one beside it). Candidate models are simulated along it at the recording's "
+    "sweep instants and clustered as the recording is; the fit is the candidate nearest to the recording (a coarse "
+    "grid, then a refinement of each parameter, and of drop and dissipation together). Intervals: block bootstrap "
+    "of the terms. Writes a lidar YAML that 'seatwin simulate --lidar' reads, with the report under 'fit'."
+)
+
+
+def register_fit(lidar_app: typer.Typer) -> None:
+    @lidar_app.command("fit", help=_FIT_HELP)
+    def fit_cmd(
+        recording: Path = typer.Argument(..., metavar="RECORDING", help="Run directory or bag with a lidar topic."),
+        out: Path = typer.Option(..., "--out", metavar="LIDAR.yaml", help="Where to write the fitted lidar configuration."),
+        scenario: str = typer.Option(
+            None, "--scenario", metavar="SCENARIO", help="The scenario that made RECORDING (default: the one beside it)."
+        ),
+        base: Path = typer.Option(
+            None, "--base", metavar="LIDAR.yaml", help="Start from this lidar configuration (default: the VLP-16 preset)."
+        ),
+        map_spec: str = typer.Option(
+            None, "--map", help="Water mask for land returns: 'harbour', 'none' or a raster (default: the recording's)."
+        ),
+        lidar_mode: str = typer.Option("raycast", "--lidar-mode", help="Range model of the candidates."),
+        offset: float = typer.Option(0.0, "--offset", help="Fit from this many seconds after the first sweep."),
+        duration: float = typer.Option(20.0, "--duration", help="Fit this many seconds of sweeps."),
+        every: int = typer.Option(1, "--every", min=1, help="Use every n-th sweep (a longer span at the same cost)."),
+        seeds: int = typer.Option(2, "--seeds", min=1, help="Seeds each candidate is simulated with."),
+        rounds: int = typer.Option(2, "--rounds", min=0, help="Rounds of refinement after the coarse grid."),
+        boot: int = typer.Option(200, "--boot", min=0, help="Bootstrap resamples for the intervals (0: none)."),
+        seed: int = typer.Option(0, "--seed", help="First seed of the candidates and seed of the bootstrap."),
+        overwrite: bool = overwrite_option(),
+    ) -> None:
+        from seatwin.fidelity.lidar_fit import fit_lidar_to_recording
+        from seatwin.outputs import check_output_file
+        from seatwin.sensors.lidar_config import save_lidar_config
+
+        check_output_file(out, "out", inputs=[recording, scenario, base], overwrite=overwrite)
+        fit = fit_lidar_to_recording(
+            recording,
+            scenario,
+            base=base,
+            map_spec=map_spec,
+            lidar_mode=lidar_mode,
+            start_offset=offset,
+            duration=duration,
+            every=every,
+            seeds=seeds,
+            rounds=rounds,
+            n_boot=boot,
+            seed=seed,
+        )
+        save_lidar_config(fit.config, out, fit.report())
+        typer.echo(
+            f"fitted {fit.n_sweeps} sweeps of {recording} ({len(fit.candidates)} candidates, lidar distance "
+            f"{fit.distance:.3f}) → {out}"
+        )
+        for key, p in fit.parameters.items():
+            ci = p["ci95"]
+            typer.echo(f"  {key:<26} {p['estimate']:.4g}" + (f" [{ci[0]:.3g}, {ci[1]:.3g}]" if ci else ""))

@@ -57,6 +57,9 @@ def register(app: typer.Typer) -> None:
         seed: int | None = typer.Option(None, "--seed", help="Seed of every random draw (default: the scenario's)."),
         lidar_mode: LidarMode = typer.Option(LidarMode.raycast, "--lidar-mode", help="Lidar range model."),
         lidar_preset: str = typer.Option("vlp16", "--lidar-preset", help="vlp16 (1800 columns) or vlp16-thesis (1024)."),
+        lidar: str | None = typer.Option(
+            None, "--lidar", metavar="LIDAR.yaml", help="Lidar configuration, e.g. from 'seatwin lidar fit' (replaces the preset)"
+        ),
         ray_drop: float | None = typer.Option(None, "--ray-drop", help="Ray-drop probability (default 0.8, as the thesis)."),
         range_noise: float | None = typer.Option(None, "--range-noise", help="Range noise σ in metres (default 0.015)."),
         dissipation: bool = typer.Option(False, "--dissipation", help="Range-dependent return probability."),
@@ -150,6 +153,7 @@ def register(app: typer.Typer) -> None:
                 compression=compression,
                 image_format=image_format,
                 radar_config=radar,
+                lidar_config=lidar,
                 radar_spokes=streamer is not None,
                 camera_hfov_deg=camera_hfov,
                 **({"camera_distortion": split_list(camera_distortion, "camera_distortion")} if camera_distortion else {}),

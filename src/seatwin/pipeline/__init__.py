@@ -19,7 +19,8 @@ holds every verb's call (``seatwin <verb>`` only parses, calls one or two of the
 (:func:`import_joyride`, :func:`import_ravnkloa_radar`), ``scenario`` (:func:`load_scenario`,
 :func:`scenario_summary`, :func:`plot_scenario`, :func:`save_scenario`), ``bag info`` (:func:`bag_info`),
 ``errors`` (:func:`depth_error_table`, :func:`write_error_plots`), ``radar fit``
-(:func:`fit_radar_to_recording`, :func:`save_radar_config`), ``sweep`` (:func:`run_sweep`,
+(:func:`fit_radar_to_recording`, :func:`save_radar_config`), ``lidar fit`` (:func:`fit_lidar_to_recording`,
+:func:`save_lidar_config`), ``sweep`` (:func:`run_sweep`,
 :func:`write_sweep`), ``campaign`` (:func:`run_campaign`), ``fidelity`` (:func:`run_fidelity`,
 :func:`write_fidelity`), ``serve`` (:func:`serve`), ``record-stream`` (:func:`record_stream`),
 ``cosim`` (:func:`export_system`, :func:`run_system`), ``bag repair`` (:func:`repair_bag`), ``bag convert``
@@ -72,6 +73,8 @@ _EXPORTS = {
     "write_error_plots": "seatwin.sensors.depthbuffer.plots",
     "fit_radar_to_recording": "seatwin.fidelity.radar_fit",
     "save_radar_config": "seatwin.sensors.radar.config",
+    "fit_lidar_to_recording": "seatwin.fidelity.lidar_fit",
+    "save_lidar_config": "seatwin.sensors.lidar_config",
     "SweepSettings": "seatwin.sweep.settings",
     "run_sweep": "seatwin.sweep.runner",
     "write_sweep": "seatwin.sweep.outputs",

@@ -63,6 +63,26 @@ class LidarSweep:
         return np.sqrt(self.x * self.x + self.y * self.y + self.z * self.z)
 
 
+@dataclass(frozen=True)
+class RangedBeams:
+    """The valid returns of some sweeps' every beam (no ray drop), before dissipation and noise
+    (:meth:`Lidar.ranged`, :meth:`Lidar.redraw`): per return its beam, world direction, range, object and normal."""
+
+    starts: tuple[float, ...]
+    frames: tuple[int, ...]
+    bounds: NDArray[np.intp]
+    """Sweep j's returns are rows ``bounds[j]:bounds[j + 1]``."""
+    beam: NDArray[np.intp]
+    directions: NDArray[np.float32]
+    range: NDArray[np.float32]
+    object_id: NDArray[np.int32]
+    normal: NDArray[np.float32]
+    dirs: NDArray[np.float32] | None
+    """Sensor-frame directions of the points where the range model samples other rays than the beams."""
+    geometry: tuple
+    """The lidar's beam pattern and mount they were ranged with."""
+
+
 def _column_bearings(d_body: NDArray[np.float32], rings: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Per column: the middle bearing of its beams (body frame) and half their spread."""
     d = d_body.reshape(-1, rings, 3).astype(np.float64)
@@ -174,9 +194,9 @@ class Lidar:
         """The sweep's beams that survive the ray drop, posed in the world."""
         return self._batch([start], [frame])[0]
 
-    def _batch(self, starts: Sequence[float], frames: Sequence[int]) -> tuple[BeamBatch, NDArray[np.intp]]:
-        """One batch of the beams of several sweeps (columns numbered across them) and each
-        beam's global index ``sweep · beams + beam``."""
+    def _batch(self, starts: Sequence[float], frames: Sequence[int], drop: bool = True) -> tuple[BeamBatch, NDArray[np.intp]]:
+        """One batch of the beams of several sweeps (columns numbered across them; without ``drop``, every beam,
+        as with no ray drop) and each beam's global index ``sweep · beams + beam``."""
         self._check_config()
         cfg = self.config
         k, c, n, rings = len(starts), cfg.columns, cfg.beams, cfg.rings
@@ -185,7 +205,7 @@ class Lidar:
         # Horizontal parts as complex numbers: turning by the heading is one complex product,
         # written straight into the (M, 3) float32 directions through a complex64 view.
         turn = turn128.astype(np.complex64)
-        kept = [self.kept_beams(f) for f in frames]
+        kept = [self.kept_beams(f) if drop else None for f in frames]
         o32 = col_o.astype(np.float32)
         if all(i is None for i in kept):  # every beam: broadcast per column instead of gathering
             g = np.arange(k * n) if k > 1 else self._all_beams
@@ -250,7 +270,69 @@ class Lidar:
         dirs = self._sampled_directions(res, batch)
         out = []
         for j, (start, frame) in enumerate(zip(starts, frames)):
-            out.append(self._pack(float(start), frame, keep[bounds[j] : bounds[j + 1]], batch, rng, oid, nrm, dirs))
+            mine = keep[bounds[j] : bounds[j + 1]]
+            out.append(self._pack(float(start), frame, mine, batch.beam, batch.directions, rng, oid, nrm, dirs))
+        return out
+
+    def ranged(self, starts: Sequence[float], frames: Sequence[int]) -> RangedBeams:
+        """Every beam of the sweeps at ``starts`` (random draws keyed by ``frames``) ranged as with no ray drop, kept for
+        :meth:`redraw`: the ranging does not depend on the drop probability, the dissipation or the noise."""
+        frames = [int(f) for f in frames]
+        if len(frames) != len(starts):
+            raise InputError(None, f"{len(starts)} sweep starts but {len(frames)} frame numbers", where="frames")
+        n = self.config.beams
+        batch, g = self._batch(starts, frames, drop=False)
+        res: BeamRanges = self._model(self.scene, batch)
+        rng, oid, nrm = res.range, res.object_id, res.normal
+        if self._self is not None:
+            rng, oid, nrm = self._merge_self_returns(batch, g, rng, oid, nrm)
+        keep = np.flatnonzero((oid >= 0) & (rng >= np.float32(self.config.min_range)))
+        dirs = self._sampled_directions(res, batch)
+        return RangedBeams(
+            tuple(float(t) for t in starts),
+            tuple(frames),
+            np.searchsorted(g[keep], np.arange(len(starts) + 1) * n),
+            batch.beam[keep],
+            batch.directions[keep],
+            rng[keep],
+            oid[keep],
+            nrm[keep],
+            None if dirs is None else dirs[keep],
+            self._geometry,
+        )
+
+    def redraw(self, ranged: RangedBeams) -> list[LidarSweep]:
+        """The sweeps of :meth:`ranged` with this lidar's ray drop, dissipation and noise: the same points as
+        :meth:`sweeps` of the same starts and frames (with the raycast range model: bit-identical, tested), for any
+        of those parameters at the cost of the drawing only. ``ranged`` must come from a lidar of the same scene,
+        beam pattern and mount."""
+        if ranged.geometry != self._geometry:
+            raise InputError(None, "the ranged beams come from a lidar of another beam pattern or mount", where="ranged")
+        out = []
+        for j, (start, frame) in enumerate(zip(ranged.starts, ranged.frames)):
+            a, b = ranged.bounds[j], ranged.bounds[j + 1]
+            beam = ranged.beam[a:b]
+            kept = self.kept_beams(frame)
+            if kept is None:
+                keep = np.arange(b - a)
+            else:
+                alive = np.zeros(self.config.beams, bool)
+                alive[kept] = True
+                keep = np.flatnonzero(alive[beam])
+            dirs = None if ranged.dirs is None else ranged.dirs[a:b]
+            out.append(
+                self._pack(
+                    start,
+                    frame,
+                    keep,
+                    beam,
+                    ranged.directions[a:b],
+                    ranged.range[a:b],
+                    ranged.object_id[a:b],
+                    ranged.normal[a:b],
+                    dirs,
+                )
+            )
         return out
 
     @staticmethod
@@ -272,25 +354,27 @@ class Lidar:
         start: float,
         frame: int,
         keep: NDArray[np.intp],
-        batch: BeamBatch,
+        beam: NDArray[np.intp],
+        directions: NDArray[np.float32],
         rng: NDArray[np.float32],
         oid: NDArray[np.int32],
         nrm: NDArray[np.float32],
         dirs: NDArray[np.float32] | None = None,
     ) -> LidarSweep:
-        """Dissipation, noise, intensity and the points of one sweep (``keep``: its valid returns)."""
+        """Dissipation, noise, intensity and the points of one sweep (``keep``: its valid returns; ``beam``,
+        ``directions`` (world) and the rest per ranged beam)."""
         cfg = self.config
         if cfg.dissipation is not None:
             u = frame_rng(self.seed, f"{self.stream}/dissipation", frame).random(keep.size, dtype=np.float32)
             keep = keep[u < return_probability(rng[keep], cfg.dissipation)]
-        sel = batch.beam[keep]
+        sel = beam[keep]
         r = rng[keep]
         if self._noise_std > 0:
             r = r + self._noise_std * frame_rng(self.seed, f"{self.stream}/noise", frame).standard_normal(
                 r.size, dtype=np.float32
             )
         ids = oid[keep]
-        cos = cos_incidence(nrm[keep], batch.directions[keep])
+        cos = cos_incidence(nrm[keep], directions[keep])
         inten = intensity(self.scene.reflectivity[ids], cos, r, cfg.intensity)
         ds = self.d_sensor[sel] if dirs is None else dirs[keep]
         return LidarSweep(

@@ -8,11 +8,14 @@ sweep starts on the sensor's x axis), elevation ω_l, direction
 
 from __future__ import annotations
 
+from pathlib import Path
+from typing import Any
+
 import numpy as np
 from numpy.typing import NDArray
 from pydantic import Field, ValidationInfo, field_validator
 
-from seatwin.errors import ParameterError
+from seatwin.errors import InputError, ParameterError
 from seatwin.geo.frames import mount_matrix
 from seatwin.settings import Settings
 from seatwin.world.vessels import MILLIAMPERE_LIDAR_HEIGHT
@@ -172,3 +175,35 @@ MILLIAMPERE_LIDAR_MOUNT = LidarMount(x=0.0, y=0.0, z=-MILLIAMPERE_LIDAR_HEIGHT, 
 clockwise relative to the sensor rig's front camera direction, seen from above"; the front
 camera is aligned with the vessel's longitudinal axis, so the sensor's x axis points 57.3°
 to starboard of the bow, and its z axis points down. (57.3° is one radian.)"""
+
+
+def load_lidar_config(path: str | Path) -> LidarConfig:
+    """A lidar YAML file (the parameters under a top-level ``lidar:`` key, or at the top; e.g. ``seatwin lidar fit``'s
+    output, whose ``fit:`` report is not read); an :class:`InputError` naming the file and field on bad content."""
+    from seatwin.safe_yaml import load_yaml
+    from seatwin.settings import validated
+
+    p = Path(path)
+    if not p.is_file():
+        raise InputError(p, "no such lidar configuration file")
+    data = load_yaml(p, "a lidar YAML file")
+    if not isinstance(data, dict):
+        raise InputError(p, f"expected a mapping of lidar parameters, got {type(data).__name__}")
+    data = data.get("lidar", data)
+    if not isinstance(data, dict):
+        raise InputError(p, f"expected a mapping of lidar parameters, got {type(data).__name__}", where="lidar")
+    return validated(LidarConfig, data, p)
+
+
+def save_lidar_config(config: LidarConfig, path: str | Path, report: dict[str, Any] | None = None) -> Path:
+    """Write ``config`` as YAML under a top-level ``lidar:`` key (and ``report`` under ``fit:``); returns the path."""
+    import yaml
+
+    from seatwin.outputs import write_text_atomic
+
+    doc: dict[str, Any] = {"lidar": config.model_dump(mode="json")}
+    if report is not None:
+        doc["fit"] = report
+    p = Path(path)
+    write_text_atomic(p, yaml.safe_dump(doc, sort_keys=False, allow_unicode=True))
+    return p

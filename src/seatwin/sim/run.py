@@ -31,7 +31,7 @@ def scenario_sensors(scenario: Scenario, settings: SimulationSettings) -> list[S
     simulated mount while /tf_static records the nominal one (a miscalibrated extrinsic).
     """
     from seatwin.sensors.lidar import lidar_for_scenario
-    from seatwin.sensors.lidar_config import MILLIAMPERE_LIDAR_MOUNT, RangeDissipation, lidar_preset
+    from seatwin.sensors.lidar_config import MILLIAMPERE_LIDAR_MOUNT, RangeDissipation, lidar_preset, load_lidar_config
     from seatwin.world.scene import Scene
 
     if scenario.ownship is None:
@@ -40,12 +40,12 @@ def scenario_sensors(scenario: Scenario, settings: SimulationSettings) -> list[S
     scene = Scene.from_scenario(scenario, harbour=settings.harbour)
     sensors: list[SimSensor] = [GroundTruthSensor(scenario, settings.ground_truth_rate_hz)]
     if "lidar" in settings.sensors:
-        config = lidar_preset(settings.lidar_preset)
+        config = load_lidar_config(settings.lidar_config) if settings.lidar_config else lidar_preset(settings.lidar_preset)
         if settings.ray_drop is not None:
             config = config.with_(drop_probability=float(settings.ray_drop))
         if settings.range_noise is not None:
             config = config.with_(range_accuracy=2.0 * float(settings.range_noise))
-        if settings.dissipation:
+        if settings.dissipation and config.dissipation is None:
             config = config.with_(dissipation=RangeDissipation())
         nominal = MILLIAMPERE_LIDAR_MOUNT
         mount = nominal.with_(yaw_deg=nominal.yaw_deg + settings.mount_yaw_bias_deg)
@@ -100,10 +100,10 @@ def water_mask_hint(scenario: Scenario, settings: SimulationSettings) -> str:
 
 
 def run_inputs(scenario: Scenario, settings: SimulationSettings) -> list[str]:
-    """The files a simulation of ``scenario`` reads (scenario, trajectories, radar configuration, harbour raster),
+    """The files a simulation of ``scenario`` reads (scenario, trajectories, radar and lidar configurations, harbour raster),
     which its outputs must never replace."""
     harbour = settings.harbour if settings.harbour is not None else scenario.environment.get("harbour")
-    return [*scenario.files, *(str(p) for p in (settings.radar_config, harbour) if p is not None)]
+    return [*scenario.files, *(str(p) for p in (settings.radar_config, settings.lidar_config, harbour) if p is not None)]
 
 
 def simulate_scenario(

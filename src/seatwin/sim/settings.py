@@ -64,6 +64,11 @@ class SimulationSettings(BagOptions):
         "without the spherical projection filter), or depthbuffer-plane (rasterised by OpenGL, each beam "
         "intersected with its pixel's surface plane).",
     )
+    lidar_config: str | None = Field(
+        None,
+        description="Lidar YAML (e.g. from 'seatwin lidar fit'): replaces the preset's parameters; ray_drop, "
+        "range_noise and dissipation still apply on top of it.",
+    )
     ray_drop: float | None = Field(
         None, ge=0.0, lt=1.0, description="Ray-drop probability (default: the preset's 0.8, as the thesis)."
     )
