@@ -30,8 +30,7 @@ import numpy as np
 
 from seatwin.evaluation.plot_terms import RadarPlotSample, radar_plot_sample, radar_plot_terms
 from seatwin.evaluation.score import ScoreOptions
-from seatwin.fidelity.joyride import TARGET, antenna_positions
-from seatwin.fidelity.method import RADAR_CLUTTER_GATE_M, truth_of
+from seatwin.fidelity.joyride import RADAR_CLUTTER_GATE_M, TARGET, antenna_positions, truth_of
 from seatwin.fidelity.synthetic import orbit_dataset
 from seatwin.sensors.radar.config import RadarConfig
 

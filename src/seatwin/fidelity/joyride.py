@@ -59,6 +59,12 @@ class JoyrideData:
         return int(self.time.shape[0])
 
 
+RADAR_CLUTTER_GATE_M = 60.0
+"""Plots and confirmed tracks farther than this from the target are clutter and off-target tracks: the
+radar's plots scatter tens of metres about the target, and a model's own scattered target plots must
+not count as clutter (plot statistics, off-target tracks and the score's plot terms alike)."""
+
+
 def load_joyride(path: str | Path) -> JoyrideData:
     """Read ``joyride.mat`` with :func:`seatwin.perception.datasets.read_joyride` (invalid rows dropped, counted)."""
     from seatwin.perception.datasets import read_joyride
@@ -161,6 +167,14 @@ def untruthed_vessels(
         if len(t) >= min_scans and off.mean() >= share and sustained_motion(t, north, east) >= min_displacement_m:
             out[f"untruthed{len(out) + 1}"] = np.column_stack([t, tracks.state[m]])
     return out
+
+
+def truth_of(data: JoyrideData) -> TruthSet:
+    """The target's GNSS ground truth as a :class:`seatwin.evaluation.TruthSet`."""
+    from seatwin.evaluation import TruthSet, TruthTrack
+
+    tr = TruthTrack(TARGET, data.time, data.target[:, 0], data.target[:, 2], data.target[:, 1], data.target[:, 3], data.source)
+    return TruthSet({TARGET: tr}, data.source)
 
 
 def vessels_truth(vessels: dict[str, NDArray[np.float64]], source: str = "<memory>") -> TruthSet:

@@ -31,12 +31,14 @@ from seatwin.evaluation.score import in_window
 from seatwin.fidelity.ablations import ablated_models
 from seatwin.fidelity.jobs import run_agent, tracker_scans
 from seatwin.fidelity.joyride import (
+    RADAR_CLUTTER_GATE_M,
     TARGET,
     TARGET_SIZE,
     JoyrideData,
     antenna_positions,
     observations,
     replica_scene,
+    truth_of,
     untruthed_vessels,
     vessels_truth,
 )
@@ -51,20 +53,6 @@ if TYPE_CHECKING:
     from seatwin.evaluation.score import FidelityScore, ScoreOptions
     from seatwin.sensors.radar.config import RadarConfig
     from seatwin.tracking import TrackerConfig
-
-
-RADAR_CLUTTER_GATE_M = 60.0
-"""Plots and confirmed tracks farther than this from the target are clutter and off-target tracks: the
-radar's plots scatter tens of metres about the target, and a model's own scattered target plots must
-not count as clutter (plot statistics, off-target tracks and the score's plot terms alike)."""
-
-
-def truth_of(data: JoyrideData) -> TruthSet:
-    """The target's GNSS ground truth as a :class:`seatwin.evaluation.TruthSet`."""
-    from seatwin.evaluation import TruthSet, TruthTrack
-
-    tr = TruthTrack(TARGET, data.time, data.target[:, 0], data.target[:, 2], data.target[:, 1], data.target[:, 3], data.source)
-    return TruthSet({TARGET: tr}, data.source)
 
 
 def block_bootstrap_ci(

@@ -107,8 +107,7 @@ SCORE_FIT_ITERATIONS = 3
 
 def _sample_of(data: JoyrideData, plots: list, config: RadarConfig, idx: NDArray[np.int64]) -> RadarPlotSample:
     from seatwin.evaluation.plot_terms import radar_plot_sample
-    from seatwin.fidelity.joyride import TARGET, antenna_positions
-    from seatwin.fidelity.method import RADAR_CLUTTER_GATE_M, truth_of
+    from seatwin.fidelity.joyride import RADAR_CLUTTER_GATE_M, TARGET, antenna_positions, truth_of
 
     antenna = antenna_positions(data, config)[idx]
     return radar_plot_sample(data.time[idx], antenna, plots, truth_of(data), TARGET, RADAR_CLUTTER_GATE_M)

@@ -406,7 +406,7 @@ def _labelled(comparison: Any, tuning: str) -> Any:
 
 
 def _html(out: Path, result: FidelityResult) -> Path:
-    from seatwin.fidelity.method import truth_of
+    from seatwin.fidelity.joyride import truth_of
     from seatwin.report import Clouds, ScenarioResult
 
     data = result.data
