@@ -17,7 +17,8 @@ OSP/Gemini client is):
   ``simulate`` of the same window, samples and settings (lidar + radar), CPU time (target ≤ 20 % over
   ``simulate``), at both step sizes.
 * ``growth``: the CPU cost of a step (ground truth of 3 vessels, no sensor: the lock-step's own
-  bookkeeping), the median of the 500 steps before 200 s, 2000 s and 3600 s of one 0.1 s-step run.
+  bookkeeping), the median of the 500 steps before 200 s, 2000 s and 3600 s of one 0.1 s-step run
+  (process and stepping-thread CPU), and that hour-old run's steps interleaved with a new run's at 200 s.
 
 Each part prints a JSON line; the last line is all of them. ``python benchmarks/grpc.py [--steps N]
 [--parts served,transport]``.
@@ -238,25 +239,49 @@ def direct(n_steps: int, step_s: float, tmp: Path, repeats: int = 1) -> dict:
 
 
 def growth(tmp: Path) -> dict:
+    """One 0.1 s-step run to 3600 s: the median CPU of the 500 steps before each mark (the process's, and the
+    stepping thread's alone, which leaves out any other thread of the process); then, to take the machine's
+    drift out, 500 steps of that hour-old run interleaved with 500 of a new run at 200 s (median ratio)."""
     from seatwin.api.lockstep import LockstepSettings, LockstepSimulation
 
     marks = (200.0, 2000.0, 3600.0)
     n = int(marks[-1] / 0.1) + 1
-    start, steps = _poses(n, 0.1)
-    sim = LockstepSimulation(tmp / "growth", LockstepSettings(sensors=(), **SAME))
-    sim.set_start_time(repr(start))
-    stamps = []
+    start, steps = _poses(n + 500, 0.1)
+
+    def new_run(name: str) -> LockstepSimulation:
+        sim = LockstepSimulation(tmp / name, LockstepSettings(sensors=(), **SAME))
+        sim.set_start_time(repr(start))
+        return sim
+
+    sim = new_run("growth")
+    stamps, threads = [], []
     for k in range(n):
         rel = steps[k][0]
-        c0 = time.process_time()
+        c0, h0 = time.process_time(), time.thread_time()
         sim.step(steps[k][1], rel, 0.1)
         stamps.append(time.process_time() - c0)
-    sim.close()
+        threads.append(time.thread_time() - h0)
     out: dict = {"part": "growth", "step_s": 0.1}
     for m in marks:
         k = int(round(m / 0.1))
         out[f"us_per_step_at_{m:g}s"] = round(1e6 * statistics.median(stamps[k - 500 : k]), 1)
+        out[f"thread_us_per_step_at_{m:g}s"] = round(1e6 * statistics.median(threads[k - 500 : k]), 1)
     out["ratio_3600_vs_200"] = round(out["us_per_step_at_3600s"] / out["us_per_step_at_200s"], 3)
+    young = new_run("growth-young")
+    k0 = int(round(marks[0] / 0.1)) - 500
+    for k in range(k0):
+        young.step(steps[k][1], steps[k][0], 0.1)
+    old_us, young_us = [], []
+    for j in range(500):
+        pair = ((sim, n + j, old_us), (young, k0 + j, young_us))
+        for run, k, into in pair if j % 2 else pair[::-1]:
+            h0 = time.thread_time()
+            run.step(steps[k][1], steps[k][0], 0.1)
+            into.append(time.thread_time() - h0)
+    sim.close()
+    young.close()
+    out["interleaved_us_at_3600s_vs_200s"] = [round(1e6 * statistics.median(x), 1) for x in (old_us, young_us)]
+    out["interleaved_ratio_3600_vs_200"] = round(statistics.median(old_us) / statistics.median(young_us), 3)
     out |= scheduling(marks)
     return out
 
@@ -293,6 +318,7 @@ def main() -> None:
     ap.add_argument("--steps", type=int, default=2000)
     ap.add_argument("--parts", default="transport,served,cameras,direct,growth")
     ap.add_argument("--repeats", type=int, default=3, help="interleaved simulate/lock-step pairs of the direct part")
+    ap.add_argument("--direct-steps-s", default="0.1,0.01", help="step sizes of the direct part [s]")
     args = ap.parse_args()
     parts = set(args.parts.split(","))
     results = []
@@ -311,8 +337,8 @@ def main() -> None:
         if "cameras" in parts:
             emit(served(args.steps, 0.01, (*SENSORS, "camera"), tmp, 1.0))
         if "direct" in parts:
-            emit(direct(args.steps, 0.1, tmp, args.repeats))
-            emit(direct(args.steps, 0.01, tmp, args.repeats))
+            for step_s in args.direct_steps_s.split(","):
+                emit(direct(args.steps, float(step_s), tmp, args.repeats))
         if "growth" in parts:
             emit(growth(tmp))
     print(json.dumps(results))
