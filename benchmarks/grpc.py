@@ -18,7 +18,8 @@ OSP/Gemini client is):
   ``simulate``), at both step sizes.
 * ``growth``: the CPU cost of a step (ground truth of 3 vessels, no sensor: the lock-step's own
   bookkeeping), the median of the 500 steps before 200 s, 2000 s and 3600 s of one 0.1 s-step run
-  (process and stepping-thread CPU), and that hour-old run's steps interleaved with a new run's at 200 s.
+  (process and stepping-thread CPU), and that hour-old run's steps interleaved with a new run's at 200 s
+  (and, as a control of the machine's noise, two new runs at 200 s interleaved).
 
 Each part prints a JSON line; the last line is all of them. ``python benchmarks/grpc.py [--steps N]
 [--parts served,transport]``.
@@ -271,17 +272,29 @@ def growth(tmp: Path) -> dict:
     k0 = int(round(marks[0] / 0.1)) - 500
     for k in range(k0):
         young.step(steps[k][1], steps[k][0], 0.1)
-    old_us, young_us = [], []
-    for j in range(500):
-        pair = ((sim, n + j, old_us), (young, k0 + j, young_us))
-        for run, k, into in pair if j % 2 else pair[::-1]:
-            h0 = time.thread_time()
-            run.step(steps[k][1], steps[k][0], 0.1)
-            into.append(time.thread_time() - h0)
-    sim.close()
-    young.close()
-    out["interleaved_us_at_3600s_vs_200s"] = [round(1e6 * statistics.median(x), 1) for x in (old_us, young_us)]
-    out["interleaved_ratio_3600_vs_200"] = round(statistics.median(old_us) / statistics.median(young_us), 3)
+
+    def interleaved(a: LockstepSimulation, ka: int, b: LockstepSimulation, kb: int) -> tuple[float, float]:
+        """500 steps of each, alternately (the order alternating too): median stepping-thread CPU of each."""
+        us: tuple[list[float], list[float]] = ([], [])
+        for j in range(500):
+            pair = ((a, ka + j, us[0]), (b, kb + j, us[1]))
+            for run, k, into in pair if j % 2 else pair[::-1]:
+                h0 = time.thread_time()
+                run.step(steps[k][1], steps[k][0], 0.1)
+                into.append(time.thread_time() - h0)
+        return statistics.median(us[0]), statistics.median(us[1])
+
+    old_us, young_us = interleaved(sim, n, young, k0)
+    out["interleaved_us_at_3600s_vs_200s"] = [round(1e6 * x, 1) for x in (old_us, young_us)]
+    out["interleaved_ratio_3600_vs_200"] = round(old_us / young_us, 3)
+    # Control: two new runs at 200 s, interleaved the same way — the ratio the machine's noise alone gives.
+    twin = new_run("growth-twin")
+    for k in range(k0 + 500):
+        twin.step(steps[k][1], steps[k][0], 0.1)
+    a_us, b_us = interleaved(young, k0 + 500, twin, k0 + 500)
+    out["control_ratio_200_vs_200"] = round(a_us / b_us, 3)
+    for run in (sim, young, twin):
+        run.close()
     out |= scheduling(marks)
     return out
 
