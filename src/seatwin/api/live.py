@@ -93,7 +93,10 @@ class LiveTracks:
         steps, one-sided at the ends), element by element on Python floats."""
         k = self.n
         t = float(t)
-        ns, es, hs = (x.tolist() if isinstance(x, np.ndarray) else [float(v) for v in x] for x in (north, east, heading))
+        ns, es, hs = (
+            x.astype(np.float64, copy=False).tolist() if isinstance(x, np.ndarray) else [float(v) for v in x]
+            for x in (north, east, heading)
+        )
         rows = []
         if not k:
             for n, e, h in zip(ns, es, hs, strict=True):
