@@ -17,7 +17,9 @@ OSP/Gemini client is):
   ``simulate`` of the same window, samples and settings (lidar + radar), CPU time (target ≤ 20 % over
   ``simulate``), at both step sizes.
 * ``growth``: the CPU cost of a step (ground truth of 3 vessels, no sensor: the lock-step's own
-  bookkeeping), the median of the 500 steps before 200 s, 2000 s and 3600 s of one 0.1 s-step run.
+  bookkeeping), the median of the 500 steps before 200 s, 2000 s and 3600 s of one 0.1 s-step run
+  (process and stepping-thread CPU), and that hour-old run's steps interleaved with a new run's at 200 s
+  (and, as a control of the machine's noise, two new runs at 200 s interleaved).
 
 Each part prints a JSON line; the last line is all of them. ``python benchmarks/grpc.py [--steps N]
 [--parts served,transport]``.
@@ -184,7 +186,9 @@ def served(n_steps: int, step_s: float, sensors: tuple[str, ...], tmp: Path, tar
     }
 
 
-def direct(n_steps: int, step_s: float, tmp: Path) -> dict:
+def direct(n_steps: int, step_s: float, tmp: Path, repeats: int = 1) -> dict:
+    """``repeats`` interleaved pairs (the order alternating, after one warm-up of each): the median of the
+    per-pair CPU ratios, so a shared machine's load drifting during the part cancels out."""
     from seatwin.api.lockstep import LockstepSettings, LockstepSimulation
     from seatwin.pipeline.simulate import simulate_run
 
@@ -192,51 +196,105 @@ def direct(n_steps: int, step_s: float, tmp: Path) -> dict:
     scenario = _scenario_of(start, steps)
     duration = n_steps * step_s
     kw = {"start": start, "progress": False, "sensors": SENSORS, **SAME}
+    runs = iter(range(10**6))
+
+    def simulate_cpu() -> tuple[float, dict]:
+        cpu0 = time.process_time()
+        ref = simulate_run(scenario, tmp / f"ref-{step_s:g}-{next(runs)}", duration=duration, **kw)
+        return time.process_time() - cpu0, ref.frames
+
+    def lockstep_cpu(n: int | None = None) -> tuple[float, dict]:
+        cpu0 = time.process_time()
+        sim = LockstepSimulation(tmp / f"direct-{step_s:g}-{next(runs)}", LockstepSettings(sensors=SENSORS, **SAME))
+        sim.set_start_time(repr(start))
+        for rel, poses in steps[:n]:
+            sim.step(poses, rel, step_s)
+        res = sim.close()
+        return time.process_time() - cpu0, res.frames
+
     simulate_run(scenario, tmp / f"warm-{step_s:g}", duration=min(1.0, duration), **kw)
-    cpu0 = time.process_time()
-    ref = simulate_run(scenario, tmp / f"ref-{step_s:g}", duration=duration, **kw)
-    sim_cpu = time.process_time() - cpu0
-    cpu0 = time.process_time()
-    sim = LockstepSimulation(tmp / f"direct-{step_s:g}", LockstepSettings(sensors=SENSORS, **SAME))
-    sim.set_start_time(repr(start))
-    for rel, poses in steps:
-        sim.step(poses, rel, step_s)
-    res = sim.close()
-    lock_cpu = time.process_time() - cpu0
-    over = lock_cpu / sim_cpu - 1.0
+    lockstep_cpu(min(len(steps), 20))
+    pairs = []
+    for r in range(repeats):
+        if r % 2:
+            lock_cpu, lock_frames = lockstep_cpu()
+            sim_cpu, ref_frames = simulate_cpu()
+        else:
+            sim_cpu, ref_frames = simulate_cpu()
+            lock_cpu, lock_frames = lockstep_cpu()
+        pairs.append((sim_cpu, lock_cpu, lock_frames == ref_frames))
+    over = statistics.median(lock / sim - 1.0 for sim, lock, _ in pairs)
     return {
         "part": "direct",
         "step_s": step_s,
         "steps": n_steps,
-        "simulate_cpu_s": round(sim_cpu, 3),
-        "lockstep_cpu_s": round(lock_cpu, 3),
+        "repeats": repeats,
+        "simulate_cpu_s": [round(sim, 3) for sim, _, _ in pairs],
+        "lockstep_cpu_s": [round(lock, 3) for _, lock, _ in pairs],
         "cpu_overhead": round(over, 3),
-        "frames_equal": res.frames == ref.frames,
-        "frames": res.frames,
+        "cpu_overhead_each": [round(lock / sim - 1.0, 3) for sim, lock, _ in pairs],
+        "frames_equal": all(eq for _, _, eq in pairs),
+        "frames": lock_frames,
         "target_met": over <= 0.20,
     }
 
 
 def growth(tmp: Path) -> dict:
+    """One 0.1 s-step run to 3600 s: the median CPU of the 500 steps before each mark (the process's, and the
+    stepping thread's alone, which leaves out any other thread of the process); then, to take the machine's
+    drift out, 500 steps of that hour-old run interleaved with 500 of a new run at 200 s (median ratio)."""
     from seatwin.api.lockstep import LockstepSettings, LockstepSimulation
 
     marks = (200.0, 2000.0, 3600.0)
     n = int(marks[-1] / 0.1) + 1
-    start, steps = _poses(n, 0.1)
-    sim = LockstepSimulation(tmp / "growth", LockstepSettings(sensors=(), **SAME))
-    sim.set_start_time(repr(start))
-    stamps = []
+    start, steps = _poses(n + 500, 0.1)
+
+    def new_run(name: str) -> LockstepSimulation:
+        sim = LockstepSimulation(tmp / name, LockstepSettings(sensors=(), **SAME))
+        sim.set_start_time(repr(start))
+        return sim
+
+    sim = new_run("growth")
+    stamps, threads = [], []
     for k in range(n):
         rel = steps[k][0]
-        c0 = time.process_time()
+        c0, h0 = time.process_time(), time.thread_time()
         sim.step(steps[k][1], rel, 0.1)
         stamps.append(time.process_time() - c0)
-    sim.close()
+        threads.append(time.thread_time() - h0)
     out: dict = {"part": "growth", "step_s": 0.1}
     for m in marks:
         k = int(round(m / 0.1))
         out[f"us_per_step_at_{m:g}s"] = round(1e6 * statistics.median(stamps[k - 500 : k]), 1)
+        out[f"thread_us_per_step_at_{m:g}s"] = round(1e6 * statistics.median(threads[k - 500 : k]), 1)
     out["ratio_3600_vs_200"] = round(out["us_per_step_at_3600s"] / out["us_per_step_at_200s"], 3)
+    young = new_run("growth-young")
+    k0 = int(round(marks[0] / 0.1)) - 500
+    for k in range(k0):
+        young.step(steps[k][1], steps[k][0], 0.1)
+
+    def interleaved(a: LockstepSimulation, ka: int, b: LockstepSimulation, kb: int) -> tuple[float, float]:
+        """500 steps of each, alternately (the order alternating too): median stepping-thread CPU of each."""
+        us: tuple[list[float], list[float]] = ([], [])
+        for j in range(500):
+            pair = ((a, ka + j, us[0]), (b, kb + j, us[1]))
+            for run, k, into in pair if j % 2 else pair[::-1]:
+                h0 = time.thread_time()
+                run.step(steps[k][1], steps[k][0], 0.1)
+                into.append(time.thread_time() - h0)
+        return statistics.median(us[0]), statistics.median(us[1])
+
+    old_us, young_us = interleaved(sim, n, young, k0)
+    out["interleaved_us_at_3600s_vs_200s"] = [round(1e6 * x, 1) for x in (old_us, young_us)]
+    out["interleaved_ratio_3600_vs_200"] = round(old_us / young_us, 3)
+    # Control: two new runs at 200 s, interleaved the same way — the ratio the machine's noise alone gives.
+    twin = new_run("growth-twin")
+    for k in range(k0 + 500):
+        twin.step(steps[k][1], steps[k][0], 0.1)
+    a_us, b_us = interleaved(young, k0 + 500, twin, k0 + 500)
+    out["control_ratio_200_vs_200"] = round(a_us / b_us, 3)
+    for run in (sim, young, twin):
+        run.close()
     out |= scheduling(marks)
     return out
 
@@ -272,6 +330,8 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--steps", type=int, default=2000)
     ap.add_argument("--parts", default="transport,served,cameras,direct,growth")
+    ap.add_argument("--repeats", type=int, default=3, help="interleaved simulate/lock-step pairs of the direct part")
+    ap.add_argument("--direct-steps-s", default="0.1,0.01", help="step sizes of the direct part [s]")
     args = ap.parse_args()
     parts = set(args.parts.split(","))
     results = []
@@ -290,8 +350,8 @@ def main() -> None:
         if "cameras" in parts:
             emit(served(args.steps, 0.01, (*SENSORS, "camera"), tmp, 1.0))
         if "direct" in parts:
-            emit(direct(args.steps, 0.1, tmp))
-            emit(direct(args.steps, 0.01, tmp))
+            for step_s in args.direct_steps_s.split(","):
+                emit(direct(args.steps, float(step_s), tmp, args.repeats))
         if "growth" in parts:
             emit(growth(tmp))
     print(json.dumps(results))

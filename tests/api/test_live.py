@@ -6,6 +6,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from seatwin.api.live import LiveGroundTruth, LiveTracks
 from seatwin.geo import GeodeticOrigin
@@ -88,3 +90,38 @@ def test_ground_truth_poses_and_navsatfix() -> None:
     assert out[1].north == poses[2, 1, 0] and out[1].heading == pytest.approx(math.remainder(poses[2, 1, 2], 2 * math.pi))
     lat, lon, h = ned_to_llh_wgs84(np.array([out[1].north]), np.array([out[1].east]), np.zeros(1), origin)
     assert out[1].llh == (lat[0], lon[0], h[0])
+
+
+EDGE_HEADINGS = [-math.pi, math.pi, 0.0, -0.0, 3.0, -3.0, 7.0, -1e3, 1e-300]
+"""Headings on ±π, near it, several turns off, signed zeros."""
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    steps=st.lists(st.floats(0.001, 2.0), min_size=2, max_size=40),
+    headings=st.lists(st.sampled_from(EDGE_HEADINGS) | st.floats(-20, 20), min_size=41),
+    reads=st.lists(st.booleans(), min_size=41),
+    capacity=st.integers(1, 8),
+)
+def test_samples_are_the_trajectorys_whenever_they_are_read(
+    steps: list[float], headings: list[float], reads: list[bool], capacity: int
+) -> None:
+    """Reads between appends (the arrays written then) or none until the end: the same bits as a Trajectory
+    of the samples (headings on ±π, across it, far off; uneven steps; growths)."""
+    t = 1.6e9 + np.cumsum([0.0, *steps])
+    n = len(t)
+    north, east, heading = np.cos(t - t[0]) * 50.0, np.sin(3.0 * (t - t[0])), np.array(headings[:n])
+    tracks = LiveTracks(1, capacity=capacity)
+    for k in range(n):
+        tracks.append(float(t[k]), north[k : k + 1], east[k : k + 1], heading[k : k + 1])
+        assert tracks.sample_time(-1) == t[k] and tracks.n == k + 1
+        if reads[k] and k >= 1:
+            tracks.state_rows(float(t[k]))
+    query = np.concatenate([t, 0.5 * (t[1:] + t[:-1])])
+    ref = Trajectory(t, north, east, heading).state_at(query)
+    got = tracks.state(query)
+    for c, name in enumerate(("north", "east", "heading", "v_north", "v_east", "yaw_rate")):
+        assert np.array_equal(got[0, c], getattr(ref, name)), name
+        assert [tracks.state_rows(float(q))[0][c] for q in query] == got[0, c].tolist(), name
+    assert np.array_equal(tracks.trajectory(0).heading, Trajectory(t, north, east, heading).heading)
+    assert tracks.last(0)[:2] == (north[-1], east[-1])

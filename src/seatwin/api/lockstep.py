@@ -2,7 +2,8 @@
 
 :class:`LockstepSimulation` is what ``seatwin serve`` runs behind its gRPC ``Simulation`` service,
 usable without gRPC. Each :meth:`~LockstepSimulation.step` appends every vessel's pose to its
-samples (:class:`~seatwin.api.live.LiveTracks`: preallocated, the velocities updated in place) and
+samples (:class:`~seatwin.api.live.LiveTracks`: a few float operations a step, written to its arrays
+once per frame) and
 advances the one loop (:class:`seatwin.sim.loop.Stepper`) over every frame whose inputs are now known,
 each sensor on its own horizon:
 
@@ -130,6 +131,9 @@ class _Due:
         self.sensor, self.span_s, self.before_capture = sensor, span_s, before_capture
         self.off = off if off is not None else set()
         self.limit = -math.inf
+        self.ground_truth = isinstance(sensor, GroundTruthSensor)
+        """A ground-truth frame waits for the step after it (its velocities are central differences)."""
+        self._tail = getattr(sensor, "frame_times_from", None)
         mounts = getattr(sensor, "mounts", None)
         self.cameras = [f"camera/{m.name}" for m in mounts] if mounts is not None else None
         """A camera rig's served names (``camera/<name>``, as its images are streamed), else None."""
@@ -141,9 +145,8 @@ class _Due:
         return self.sensor.frame_times(t0, min(t1, self.limit))
 
     def frame_times_from(self, t0: float, t1: float, first: int) -> NDArray[np.float64]:
-        tail = getattr(self.sensor, "frame_times_from", None)
         t1 = min(t1, self.limit)
-        return tail(t0, t1, first) if tail is not None else self.sensor.frame_times(t0, t1)[first:]
+        return self._tail(t0, t1, first) if self._tail is not None else self.sensor.frame_times(t0, t1)[first:]
 
     def capture(self, t: float, frame: int) -> Any:
         off = self.off
@@ -230,6 +233,7 @@ class LockstepSimulation:
             _Due(x, _span_of(x), self._repose if self._scene_of(x) is not None else None, self.rendering_off)
             for x in self.sensors
         ]
+        self._scene_due = [d for d in self._due if d.before_capture is not None]
         self._posed_n = 0
         """Samples the scene was last posed with."""
         self._scene_from = -math.inf
@@ -416,7 +420,7 @@ class LockstepSimulation:
         if self.stepper is None or tracks.n < 2:
             return 0
         prev = tracks.sample_time(-2)
-        limits = [prev if isinstance(d.sensor, GroundTruthSensor) else t - d.span_s for d in self._due]
+        limits = [prev if d.ground_truth else t - d.span_s for d in self._due]
         try:
             return self._advance(limits, interrupt)
         except StepInterrupted as exc:
@@ -426,7 +430,7 @@ class LockstepSimulation:
     def _advance(self, limits: Sequence[float], interrupt: threading.Event | None = None) -> int:
         """Run every sensor's frames before its new limit (the stepper's horizon: the latest limit)."""
         # Every frame of a scene sensor before its previous limit has run: the scene needs the samples from there on.
-        self._scene_from = min((d.limit for d in self._due if d.before_capture is not None), default=math.inf)
+        self._scene_from = min((d.limit for d in self._scene_due), default=math.inf)
         for d, limit in zip(self._due, limits, strict=True):
             d.limit = limit
         return self.stepper.advance_to(max(limits), interrupt=interrupt)  # type: ignore[union-attr]

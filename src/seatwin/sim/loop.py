@@ -98,6 +98,7 @@ class Stepper:
         self.horizon = self.t0
         """Every frame before this time has run."""
         self._next = [0] * len(self.sensors)
+        self._tails = [getattr(s, "frame_times_from", None) for s in self.sensors]
         writer.write_static_transforms(self.t0, [m for s in self.sensors for m in s.static_transforms(writer.topics)])
 
     def advance_to(
@@ -122,13 +123,14 @@ class Stepper:
         events = []
         for i, s in enumerate(self.sensors):
             first = self._next[i]
-            tail = getattr(s, "frame_times_from", None) if first else None
+            tail = self._tails[i] if first else None
             if tail is None:  # the first increment (all of simulate's run): frame_times, which may prepare the frames
                 times = s.frame_times(self.t0, t1)
                 events.extend((float(times[k]), i, k) for k in range(first, len(times)))
             else:  # later increments: only the frames not run yet, at a cost independent of how many ran
                 times = tail(self.t0, t1, first)
-                events.extend((float(times[j]), i, first + j) for j in range(len(times)))
+                if len(times):
+                    events.extend((float(x), i, first + j) for j, x in enumerate(times.tolist()))
         heapq.heapify(events)
         n = 0
         while events:

@@ -10,6 +10,9 @@ from seatwin.errors import ParameterError
 TIME_EPS_S = 1e-6
 """Slack for comparing times *relative to the run's start* (float64 POSIX seconds are spaced 2.4e-7)."""
 
+_NONE = np.empty(0)
+_NONE.flags.writeable = False  # shared by every call that has no frame
+
 
 def periodic_times(t0: float, t1: float, rate_hz: float, phase_s: float = 0.0) -> NDArray[np.float64]:
     """Frame times ``t0 + phase + k / rate`` in [t0, t1), computed relative to ``t0`` (no POSIX-size margins)."""
@@ -27,7 +30,7 @@ def periodic_times_from(t0: float, t1: float, rate_hz: float, phase_s: float, fi
         raise ParameterError("rate_hz", f"a sensor needs a positive rate, got {rate_hz!r}")
     span = float(t1) - float(t0)
     if phase_s >= 0 and not phase_s + int(first) / rate_hz < span - TIME_EPS_S:  # the usual lock-step case: none due
-        return np.empty(0)  # (the same arithmetic as below, on one element)
+        return _NONE  # (the same arithmetic as below, on one element)
     dropped = 0  # leading frames of a negative phase, before t0: not frames
     if phase_s < 0:
         head = phase_s + np.arange(int(np.ceil(-phase_s * rate_hz)) + 2) / rate_hz
