@@ -82,6 +82,11 @@ class ScoreOptions:
     run_spread: bool = True
     """Target terms (S1–S3): add the run-to-run spread of the synthetic runs (≥ 2) to the within-run bootstrap
     (:mod:`seatwin.evaluation.run_spread`; docs/fidelity-score.md, *Run-to-run spread*). False: within-run only."""
+    long_memory: bool = True
+    """Signed plot-level terms: widen each side's block-bootstrap spread to the long-run variance from the series'
+    integrated autocorrelation time when that is larger, with a Student-t factor on the effective number of values
+    (:func:`seatwin.evaluation.bootstrap.long_memory_inflation`; docs/fidelity-score.md, *Long memory*). False: the
+    block bootstrap alone."""
     clutter_gate: float = 25.0
     """A plot or confirmed track farther than this [m] from every target is clutter or a false track
     (vessels are up to ~30 m long; a radar's plots scatter further: the joyride method uses 60 m)."""
