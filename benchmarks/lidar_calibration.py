@@ -11,6 +11,8 @@ track once, per minute), over the pairs.
 
     .venv/bin/python benchmarks/lidar_calibration.py --pairs 50 --workers 16 --out /tmp/lidar_calibration.json
     .venv/bin/python benchmarks/lidar_calibration.py --pairs 50 --model-runs 3 --duration 20 --base 2040 --workers 2
+    .venv/bin/python benchmarks/lidar_calibration.py --pairs 50 --model-runs 3 --duration 20 --base 2040 --workers 2 \
+        --targets-only
 """
 
 from __future__ import annotations
@@ -65,6 +67,33 @@ def score_one(pair: tuple[int, ...], scenario: str, duration: float, cache: str,
     return out
 
 
+def score_targets(pair: tuple[int, ...], scenario: str, duration: float, cache: str) -> dict[str, Any]:
+    """``--targets-only``: coverage flags of the target terms S1–S3 and of their mean S̄ (S5 without its plot parts),
+    without (``within``) and with (``spread``) the run-to-run spread."""
+    from seatwin.evaluation.score import ScoreOptions, TargetErrors, overall_score, target_score
+
+    a, *b = load_runs([(scenario, "default", s) for s in pair], duration, cache)
+    out: dict[str, Any] = {"seeds": pair, "distance": {}}
+    for spread, tag in ((False, "within"), (True, "spread")):
+        o = ScoreOptions(block=None, run_spread=spread)
+        targets = {
+            n: target_score(
+                [TargetErrors.from_series(a["evaluation"].series[n])],
+                [TargetErrors.from_series(r["evaluation"].series[n]) for r in b],
+                o,
+                stream=n,
+            )
+            for n in a["evaluation"].series
+        }
+        parts = {"S-bar (S5 without plot parts)": overall_score(targets, {}, o), **{f"target {k}": v for k, v in targets.items()}}
+        out["distance"][tag] = {
+            k: {"value": v.value, "ci": [v.ci_low, v.ci_high], "covers_0": None if v.ci_low is None else v.ci_low <= 1e-12}
+            for k, v in parts.items()
+            if v.value is not None
+        }
+    return out
+
+
 def share(flags: list[bool | None]) -> tuple[int, int]:
     got = [f for f in flags if f is not None]
     return sum(got), len(got)
@@ -82,16 +111,31 @@ def main() -> None:
     ap.add_argument("--workers", type=int, default=1)
     ap.add_argument("--cache", default="/tmp/seatwin-lidarbench")
     ap.add_argument("--out", default=None)
+    ap.add_argument("--targets-only", action="store_true", help="only the target terms and their mean (K ≥ 2)")
     a = ap.parse_args()
     t0 = time.perf_counter()
     k = a.model_runs + 1
     seeds = list(range(a.base, a.base + k * a.pairs))
     ensure_runs([(a.scenario, "default", s) for s in seeds], a.duration, a.cache, a.workers)
     t1 = time.perf_counter()
+    pairs = [tuple(seeds[k * i : k * (i + 1)]) for i in range(a.pairs)]
+    if a.targets_only:
+        res = parallel_map(partial(score_targets, scenario=a.scenario, duration=a.duration, cache=a.cache), pairs, a.workers)
+        print(f"{a.pairs} pairs (1 against {a.model_runs} runs), target terms only: scoring {time.perf_counter() - t1:.0f} s")
+        table = {}
+        for tag in ("within", "spread"):
+            for name in sorted({n for r in res for n in r["distance"][tag]}):
+                c = share([r["distance"][tag].get(name, {}).get("covers_0") for r in res])
+                vals = [r["distance"][tag][name]["value"] for r in res if name in r["distance"][tag]]
+                width = [np.diff(r["distance"][tag][name]["ci"])[0] for r in res if name in r["distance"][tag]]
+                table[f"{tag}: {name}"] = {"covers_0": c, "mean": float(np.mean(vals)), "mean_width": float(np.mean(width))}
+                print(f"{tag}: {name}: holds 0 in {c[0]}/{c[1]}, mean value {np.mean(vals):.3f}, mean width {np.mean(width):.3f}")
+        if a.out:
+            Path(a.out).write_text(json.dumps({"args": vars(a), "table": table, "pairs": res}, indent=1))
+        return
     runs = load_runs([(a.scenario, "default", s) for s in seeds], a.duration, a.cache)
     every = run_lidar_samples([r["tracks"] for r in runs], runs[0]["truth"])
     pooled = {k: t.real for k, t in lidar_terms(every, every).items() if t.real is not None}  # type: ignore[arg-type]
-    pairs = [tuple(seeds[k * i : k * (i + 1)]) for i in range(a.pairs)]
     res = parallel_map(
         partial(score_one, scenario=a.scenario, duration=a.duration, cache=a.cache, pooled=pooled), pairs, a.workers
     )
