@@ -84,8 +84,11 @@ def load_runs(jobs: list[tuple[str, str, int]], duration: float, cache: str) -> 
     return [simulate_run(s, m, k, duration, cache) for s, m, k in jobs]
 
 
-def score_pair(real: list[dict[str, Any]], synthetic: list[dict[str, Any]], block: int | None = 10) -> Any:
-    """The fidelity score with the sensor terms (``score_runs_with_sensor_terms``) of ``synthetic`` against ``real`` runs."""
+def score_pair(
+    real: list[dict[str, Any]], synthetic: list[dict[str, Any]], block: int | None = 10, run_spread: bool = True
+) -> Any:
+    """The fidelity score with the sensor terms (``score_runs_with_sensor_terms``) of ``synthetic`` against ``real`` runs
+    (``run_spread``: ``ScoreOptions.run_spread``, the target terms' run-to-run spread when ≥ 2 synthetic runs)."""
     from seatwin.evaluation.score import ScoreOptions
     from seatwin.evaluation.sensor_score import score_runs_with_sensor_terms
 
@@ -95,7 +98,7 @@ def score_pair(real: list[dict[str, Any]], synthetic: list[dict[str, Any]], bloc
         real[0]["truth"],
         [r["evaluation"] for r in real],
         [s["evaluation"] for s in synthetic],
-        ScoreOptions(block=block),
+        ScoreOptions(block=block, run_spread=run_spread),
     )
 
 

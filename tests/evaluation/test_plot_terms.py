@@ -103,7 +103,8 @@ def test_signed_term_values_direction_and_interval():
     synth = [np.tile([0.0, 1.0], 20), np.tile([0.0, 1.0, np.nan], 10)]  # mean 0.5 (NaN: scans without a plot)
     t = signed_term("bearing bias", "°", real, synth, np.mean, o, ("far clockwise", "far anticlockwise"))
     assert (t.real, t.synthetic, t.difference) == pytest.approx((-1.5, 0.5, 2.0))
-    assert t.counts == {"n_real": 60, "n_synthetic": 60}
+    assert (t.counts["n_real"], t.counts["n_synthetic"]) == (60, 60)
+    assert t.counts["memory_inflation_real"] >= 1.0 and t.counts["memory_inflation_synthetic"] >= 1.0  # long memory
     assert t.real_ci[0] <= -1.5 <= t.real_ci[1] and t.difference_ci[0] > 0.0 and t.resolved
     assert "model is 2 ° too far clockwise" in t.sentence() and "(resolved)" in t.sentence()
     same = signed_term("bearing bias", "°", real, [np.tile([-1.0, -2.0], 25)], np.mean, o)

@@ -106,3 +106,65 @@ def block_length(series: ArrayLike, cap: int | None = None, rule: str = "politis
 def runs_block_length(runs: Sequence[ArrayLike], rule: str = "politis-white") -> int:
     """:func:`block_length` for a statistic pooled over several runs: the longest that any run asks for."""
     return max([block_length(r, rule=rule) for r in runs] or [1])
+
+
+SOKAL_WINDOW = 5.0
+"""Sokal's automatic window: the autocorrelations are summed up to the first lag ``M ≥ c τ(M)``, c = 5."""
+
+
+def integrated_autocorrelation_time(series: ArrayLike, c: float = SOKAL_WINDOW) -> float:
+    """``τ = 1 + 2 Σ_{k=1}^{M} ρ(k)`` of ``series`` (its finite values, in order), ``M`` the smallest lag with
+    ``M ≥ c τ(M)`` (Sokal's automatic window; at most n − 1): the variance of the series' mean is ``τ σ² / n``, so
+    ``n / τ`` values are worth independent ones; divided by ``1 − (2M + 1)/n`` (at least ½), the bias of the sum when
+    the mean is estimated from the series. At least 1 (the floor: negative correlation is not credited); 1 for a
+    constant series or one shorter than 4."""
+    x = np.asarray(series, float).reshape(-1)
+    x = x[np.isfinite(x)]
+    n = len(x)
+    if n < 4:
+        return 1.0
+    x = x - x.mean()
+    var = float(x @ x)
+    if var <= 0.0:
+        return 1.0
+    tau, m = 1.0, n - 1
+    for k in range(1, n):
+        tau += 2.0 * float(x[:-k] @ x[k:]) / var
+        if k >= c * tau:
+            m = k
+            break
+    # The mean is estimated from the series itself: every autocovariance is low by about Var(x̄) = τσ²/n, so the
+    # window's sum by (2M + 1)τ/n; undone, at most doubling τ.
+    return max(1.0, tau / max(0.5, 1.0 - (2 * m + 1) / n))
+
+
+def runs_autocorrelation_time(runs: Sequence[ArrayLike]) -> float:
+    """:func:`integrated_autocorrelation_time` for a mean pooled over runs: the runs' τ weighted by their number of
+    finite values (the pooled mean's variance is ``σ² Σ nᵢ τᵢ / N²``)."""
+    n = [int(np.isfinite(np.asarray(r, float)).sum()) for r in runs]
+    if not sum(n):
+        return 1.0
+    return float(sum(k * integrated_autocorrelation_time(r) for k, r in zip(n, runs)) / sum(n))
+
+
+def long_memory_inflation(runs: Sequence[ArrayLike], boot_means: ArrayLike, level: float = 0.95) -> float:
+    """The factor by which to widen a block-bootstrap spread of a statistic pooled over ``runs`` when the series
+    remember longer than the blocks see: ``√max(1, V_τ / V_boot) · t_ν / z``, ``V_τ = τ s² / N`` the long-run
+    variance of the pooled mean (:func:`runs_autocorrelation_time`; ``s²`` the values' variance), ``V_boot`` the
+    variance of ``boot_means`` (the plain mean of the same block resamples), ``t_ν / z`` the ratio of the Student-t
+    (``ν = N / τ − 1`` effective values, at least 1) and normal quantiles at ``level`` — the variance is estimated
+    from ``N / τ`` independent spells only. 1 with fewer than 2 values or no bootstrap spread."""
+    from scipy.stats import norm, t
+
+    parts = [np.asarray(r, float).reshape(-1) for r in runs]
+    x = np.concatenate(parts) if parts else np.empty(0)
+    x = x[np.isfinite(x)]
+    bm = np.asarray(boot_means, float)
+    bm = bm[np.isfinite(bm)]
+    if len(x) < 2 or len(bm) < 2 or float(np.var(bm, ddof=1)) <= 0.0:
+        return 1.0
+    tau = runs_autocorrelation_time(parts)
+    ratio = tau * float(np.var(x, ddof=1)) / len(x) / float(np.var(bm, ddof=1))
+    q = (1.0 + level) / 2.0
+    nu = max(1.0, len(x) / tau - 1.0)
+    return float(np.sqrt(max(1.0, ratio)) * t.ppf(q, nu) / norm.ppf(q))

@@ -23,7 +23,7 @@ from functools import partial
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from seatwin.evaluation.bootstrap import circular_block_indices, percentile_interval, runs_block_length
+from seatwin.evaluation.bootstrap import circular_block_indices, long_memory_inflation, percentile_interval, runs_block_length
 from seatwin.evaluation.score import ScoreOptions, ScoreValue, clutter_mask, with_ci
 from seatwin.evaluation.truth import TruthSet
 from seatwin.rng import frame_rng
@@ -192,11 +192,19 @@ def signed_term(
     block = runs_block_length(rr + ss)
     rng = frame_rng(o.seed, f"plot_terms/{name}", 0)
     reps = np.full((o.n_boot, 2), np.nan)
+    means = np.full((o.n_boot, 2), np.nan)
     for b in range(o.n_boot):
         br = _pooled(rr, [circular_block_indices(len(r), block, rng) for r in rr])
         bs = _pooled(ss, [circular_block_indices(len(s), block, rng) for s in ss])
         if min(len(br), len(bs)) >= 2:
             reps[b] = statistic(br) * scale, statistic(bs) * scale
+            means[b] = br.mean(), bs.mean()
+    if o.long_memory:  # widen each side's spread to its long-run variance (docs/fidelity-score.md, *Long memory*)
+        for j, side in enumerate((rr, ss)):
+            f = long_memory_inflation(side, means[:, j], o.level)
+            centre = float(np.nanmean(reps[:, j]))
+            reps[:, j] = centre + f * (reps[:, j] - centre)
+            counts[("memory_inflation_real", "memory_inflation_synthetic")[j]] = f
     vr, vs = statistic(xr) * scale, statistic(xs) * scale
     diff = reps[:, 1] - reps[:, 0]
     return SignedTerm(

@@ -34,7 +34,9 @@ clusters) are left out and named.
 Every value comes with a circular block bootstrap interval (blocks of consecutive instants or
 scans within each run) and the numbers behind
 it. A value is *refused* — None, with the reason — when too few instants support it.
-Intervals are bias-shifted (see :func:`_with_ci`).
+Intervals are bias-shifted (see :func:`_with_ci`). The target terms with ≥ 2 synthetic runs take their interval
+from the runs' spread instead (:mod:`seatwin.evaluation.run_spread`; a tracker behaves differently from run to run,
+which no within-run resampling sees), with a test-inverted lower bound (``ScoreValue.null_replicates``).
 """
 
 from __future__ import annotations
@@ -48,6 +50,15 @@ from numpy.typing import ArrayLike, NDArray
 from seatwin.evaluation.bootstrap import circular_block_indices, percentile_interval, runs_block_length
 from seatwin.evaluation.evaluate import Evaluation, TargetSeries
 from seatwin.evaluation.hellinger import hellinger
+from seatwin.evaluation.run_spread import (
+    GAUSSIAN_PARAMS,
+    RunSpread,
+    gaussian_from_params,
+    gaussian_params,
+    run_effects,
+    run_spread,
+    t_scales,
+)
 from seatwin.evaluation.tracks_io import Tracks
 from seatwin.evaluation.truth import TruthSet
 from seatwin.rng import frame_rng
@@ -68,6 +79,14 @@ class ScoreOptions:
     (:func:`seatwin.evaluation.bootstrap.runs_block_length`, Politis–White)."""
     level: float = 0.95
     seed: int = 0
+    run_spread: bool = True
+    """Target terms (S1–S3): add the run-to-run spread of the synthetic runs (≥ 2) to the within-run bootstrap
+    (:mod:`seatwin.evaluation.run_spread`; docs/fidelity-score.md, *Run-to-run spread*). False: within-run only."""
+    long_memory: bool = True
+    """Signed plot-level terms: widen each side's block-bootstrap spread to the long-run variance from the series'
+    integrated autocorrelation time when that is larger, with a Student-t factor on the effective number of values
+    (:func:`seatwin.evaluation.bootstrap.long_memory_inflation`; docs/fidelity-score.md, *Long memory*). False: the
+    block bootstrap alone."""
     clutter_gate: float = 25.0
     """A plot or confirmed track farther than this [m] from every target is clutter or a false track
     (vessels are up to ~30 m long; a radar's plots scatter further: the joyride method uses 60 m)."""
@@ -139,10 +158,13 @@ class ScoreValue:
     reason: str | None = None
     counts: dict[str, float] = field(default_factory=dict)
     replicates: NDArray[np.float64] | None = field(default=None, repr=False)
+    null_replicates: NDArray[np.float64] | None = field(default=None, repr=False)
+    """Replicates of the distance two datasets of one model would show (run-to-run spread; None: not drawn)."""
 
     def to_dict(self) -> dict:
         d = asdict(self)
         d.pop("replicates")
+        d.pop("null_replicates")
         return d
 
 
@@ -150,18 +172,26 @@ def _refused(reason: str, **counts: float) -> ScoreValue:
     return ScoreValue(None, reason=reason, counts=dict(counts))
 
 
-def _with_ci(value: float, replicates: NDArray[np.float64], level: float, **counts: float) -> ScoreValue:
+def _with_ci(
+    value: float, replicates: NDArray[np.float64], level: float, nulls: NDArray[np.float64] | None = None, **counts: float
+) -> ScoreValue:
     """``value`` with the bias-shifted percentile interval of its bootstrap ``replicates``.
 
     A distance is biased upwards by sampling noise, and a bootstrap replicate (noise on noise) twice
     over: the replicates' percentile interval is shifted down by the bootstrap's own bias estimate
-    (mean replicate − value), clipped to [0, 1] and widened to hold the value."""
+    (mean replicate − value), clipped to [0, 1] and widened to hold the value. With ``nulls`` (replicates of the
+    distance between two datasets of one model) the lower bound is instead the test-inverted one,
+    ``max(0, value − q_level(nulls))``: 0 exactly when the value is within what one model gives ``level`` of the time."""
     ci = percentile_interval(replicates, level)
     if ci is None:
-        return ScoreValue(value, None, None, None, dict(counts), replicates)
+        return ScoreValue(value, None, None, None, dict(counts), replicates, nulls)
     bias = float(np.mean(replicates[np.isfinite(replicates)])) - value
     lo, hi = (float(np.clip(c - bias, 0.0, 1.0)) for c in ci)
-    return ScoreValue(value, min(lo, value), max(hi, value), None, dict(counts), replicates)
+    if nulls is not None and np.isfinite(nulls).any():
+        q = float(np.quantile(nulls[np.isfinite(nulls)], level))
+        lo = max(0.0, value - q)
+        counts = {**counts, "null_quantile": q}
+    return ScoreValue(value, min(lo, value), max(hi, value), None, dict(counts), replicates, nulls)
 
 
 with_ci = _with_ci
@@ -193,6 +223,76 @@ def _target_value(real: tuple[NDArray[np.float64], int], synth: tuple[NDArray[np
     return combine(h, abs(c_r - c_s))
 
 
+_Stats = tuple[NDArray[np.float64] | None, float]
+"""One side's (or run's) target statistic: its error Gaussian's parameters (None below 2 tracked instants) and coverage."""
+
+
+def _stats(pooled: tuple[NDArray[np.float64], int]) -> _Stats:
+    errors, instants = pooled
+    return (gaussian_params(*gaussian_fit(errors)) if len(errors) >= 2 else None), len(errors) / instants
+
+
+def _stats_value(real: _Stats, synthetic: _Stats) -> float:
+    """(S3) from both sides' statistics (:func:`_target_value` on the fitted Gaussians)."""
+    (pr, cr), (ps, cs) = real, synthetic
+    h = 1.0
+    if pr is not None and ps is not None:
+        (mr, cov_r), (ms, cov_s) = gaussian_from_params(pr), gaussian_from_params(ps)
+        h = float(hellinger(ms, cov_s, mr, cov_r, "standard"))
+    return combine(h, abs(cr - cs))
+
+
+def _side_effects(
+    spread: RunSpread | None, n_real: int, n: int, dim: int, rng: np.random.Generator
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """``n`` run effects for the real side (``n_real`` runs pooled) and the synthetic side (``spread.runs`` runs),
+    sharing one t-factor per replicate; zeros without a spread."""
+    if spread is None:
+        return np.zeros((n, dim)), np.zeros((n, dim))
+    u = t_scales(spread.dof, n, rng)
+    return run_effects(spread, 1 / np.sqrt(n_real), u, rng), run_effects(spread, 1 / np.sqrt(spread.runs), u, rng)
+
+
+def _run_spread_replicates(
+    real: Sequence[TargetErrors], synthetic: Sequence[TargetErrors], o: ScoreOptions, stream: str
+) -> tuple[NDArray[np.float64], NDArray[np.float64], dict[str, float]]:
+    """Replicates and null replicates of (S3) from the run-to-run spread of the K ≥ 2 synthetic runs
+    (docs/fidelity-score.md, *Run-to-run spread*).
+
+    Each run's statistic — its error Gaussian's parameters (runs with ≥ ``n_min`` tracked instants) and its coverage —
+    is one draw of what a run of the model gives; their sample covariance (ddof 1) estimates the sampling covariance
+    of one run's statistic, within-run noise and run-level tracker events together. A replicate adds to each side's
+    statistic a run effect with that covariance (scaled 1/√R for the R real runs pooled, 1/√K for the K synthetic
+    runs) times a Student-t factor (ν = K − 1: the covariance is itself estimated from K runs); a *null* replicate
+    adds the same effects to the synthetic statistic on both sides — the distance two datasets of one model would
+    show. The real side borrows the model's spread: under the hypothesis that the model is right, its runs vary as
+    the model's do."""
+    per_run = [_stats(_pool([s])) for s in synthetic]
+    tracked = [np.isfinite(s.error[:, 0]).sum() for s in synthetic]
+    gauss = [p for (p, _), m in zip(per_run, tracked) if p is not None and m >= o.n_min]
+    cover = [c for (_, c), s in zip(per_run, synthetic) if len(s.error)]
+    g_spread = run_spread(np.array(gauss)) if len(gauss) >= 2 else None
+    c_spread = run_spread(np.array(cover)[:, None]) if len(cover) >= 2 else None
+    n_real = max(1, sum(1 for r in real if len(r.error)))
+    rng = frame_rng(o.seed, f"score/target-runs/{stream}", 0)
+    g_r, g_s = _side_effects(g_spread, n_real, o.n_boot, 5, rng)
+    c_r, c_s = _side_effects(c_spread, n_real, o.n_boot, 1, rng)
+    at_r, at_s = _stats(_pool(real)), _stats(_pool(synthetic))
+
+    def moved(st: _Stats, dg: NDArray[np.float64], dc: NDArray[np.float64]) -> _Stats:
+        return (None if st[0] is None else st[0] + dg), float(np.clip(st[1] + dc[0], 0.0, 1.0))
+
+    reps = np.array([_stats_value(moved(at_r, g_r[b], c_r[b]), moved(at_s, g_s[b], c_s[b])) for b in range(o.n_boot)])
+    null_r = (at_s[0] if at_r[0] is not None else None, at_s[1])  # the real side at the model's statistic
+    nulls = np.array([_stats_value(moved(null_r, g_r[b], c_r[b]), moved(at_s, g_s[b], c_s[b])) for b in range(o.n_boot)])
+    counts: dict[str, float] = {"between_runs": 0 if g_spread is None else g_spread.runs}
+    if g_spread is not None:
+        counts |= {f"between_sd_{n}": float(v) for n, v in zip(GAUSSIAN_PARAMS, g_spread.sd)}
+    if c_spread is not None:
+        counts["between_sd_coverage"] = float(c_spread.sd[0])
+    return reps, nulls, counts
+
+
 def target_score(
     real: Sequence[TargetErrors], synthetic: Sequence[TargetErrors], options: ScoreOptions | None = None, stream: str = ""
 ) -> ScoreValue:
@@ -216,20 +316,26 @@ def target_score(
         return ScoreValue(1.0, 1.0, 1.0, None, counts | {"one_sided": True}, np.ones(o.n_boot))
     value = _target_value((er, nr), (es, ns))
     # Block length from the errors' components and the track indicator, each run a series (NaN: no track).
-    block = _block(o, [x for r in [*real, *synthetic] for x in (r.error[:, 0], r.error[:, 1], np.isfinite(r.error[:, 0]))])
-    reps = _replicates(
-        o,
-        f"score/target/{stream}",
-        lambda rng: _target_value(
-            _pool(real, [circular_block_indices(len(r.error), block, rng) for r in real]),
-            _pool(synthetic, [circular_block_indices(len(s.error), block, rng) for s in synthetic]),
-        ),
-    )
+    nulls = None
+    if o.run_spread and sum(np.isfinite(s.error[:, 0]).sum() >= o.n_min for s in synthetic) >= 2:
+        reps, nulls, spread_counts = _run_spread_replicates(real, synthetic, o, stream)
+        counts |= spread_counts
+    else:
+        block = _block(o, [x for r in [*real, *synthetic] for x in (r.error[:, 0], r.error[:, 1], np.isfinite(r.error[:, 0]))])
+        reps = _replicates(
+            o,
+            f"score/target/{stream}",
+            lambda rng: _target_value(
+                _pool(real, [circular_block_indices(len(r.error), block, rng) for r in real]),
+                _pool(synthetic, [circular_block_indices(len(s.error), block, rng) for s in synthetic]),
+            ),
+        )
+        counts["between_runs"] = 0
     counts |= {"coverage_real": len(er) / nr, "coverage_synthetic": len(es) / ns}
     if min(len(er), len(es)) >= 2:
         counts["error_hellinger"] = error_hellinger(er, es)
         counts["error_hellinger_floor"] = error_hellinger_floor(len(er), len(es))
-    return _with_ci(value, reps, o.level, **counts)
+    return _with_ci(value, reps, o.level, nulls, **counts)
 
 
 def rate_score(
@@ -317,6 +423,13 @@ class FidelityScore:
         return out | ({"not_combined": dict(self.not_combined)} if self.not_combined else {})
 
 
+def _null_part(v: ScoreValue) -> NDArray[np.float64]:
+    """A part's null replicates for S5's test-inverted lower bound: its own, else ``clip(replicate − value, 0, 1)``."""
+    if v.null_replicates is not None:
+        return v.null_replicates
+    return np.clip(np.asarray(v.replicates, float) - float(v.value), 0.0, 1.0)  # type: ignore[arg-type]
+
+
 def overall_score(
     targets: dict[str, ScoreValue], plots: dict[str, ScoreValue], options: ScoreOptions | None = None
 ) -> ScoreValue:
@@ -334,7 +447,13 @@ def overall_score(
     parts = [np.mean([v.replicates for v in defined], axis=0), *(v.replicates for v in used)]
     reps = np.array([combine(*(p[b] for p in parts)) for b in range(o.n_boot)])
     counts = {"n_targets": len(defined), "n_targets_refused": len(targets) - len(defined), "targets_mean": mean_t}
-    out = _with_ci(value, reps, o.level, **counts)
+    nulls = None
+    if any(v.null_replicates is not None for v in defined):
+        # What one model gives: each target's null replicates; a part without them, its replicates' excess over its
+        # value (the bootstrap's image of the distance sampling adds, as in the bias shift).
+        null = [np.mean([_null_part(v) for v in defined], axis=0), *(_null_part(v) for v in used)]
+        nulls = np.array([combine(*(p[b] for p in null)) for b in range(o.n_boot)])
+    out = _with_ci(value, reps, o.level, nulls, **counts)
     left_out = [k for k, v in plots.items() if v.value is None]
     if left_out:
         out.reason = "without " + "; ".join(f"{k}: {plots[k].reason}" for k in left_out)

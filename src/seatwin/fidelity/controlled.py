@@ -70,16 +70,20 @@ def drift_offsets(n: int, seed: int, phi: float = 0.9, sigma: float = 0.3) -> ND
     return x
 
 
-def orbit_sample(config: RadarConfig, scans: int, seed: int, scene: Scene = Scene(), drift: bool = False) -> RadarPlotSample:
+def orbit_sample(
+    config: RadarConfig, scans: int, seed: int, scene: Scene = Scene(), drift: bool | tuple[float, float] = False
+) -> RadarPlotSample:
     """The plot sample of one orbit recording by radar ``config``; with ``drift``, every scan's plots turned about the
-    antenna by an AR(1) bearing offset (:func:`drift_offsets`, seed ``seed + 7 000 000``)."""
+    antenna by an AR(1) bearing offset (:func:`drift_offsets`, seed ``seed + 7 000 000``; ``True``: φ 0.9, σ 0.3°;
+    a pair: (φ, σ [deg]))."""
     data = orbit_dataset(
         config, n=scans, seed=seed, radius=scene.radius, centre_east=scene.centre_east, speed=scene.speed, phase=scene.phase
     )
     antenna = antenna_positions(data, config)
     plots = data.plots
     if drift:
-        off = np.radians(drift_offsets(scans, seed + 7_000_000))
+        phi, sigma = (0.9, 0.3) if drift is True else drift
+        off = np.radians(drift_offsets(scans, seed + 7_000_000, phi, sigma))
         plots = []
         for k, p in enumerate(data.plots):
             rel = np.asarray(p, float).reshape(-1, 2) - antenna[k]
