@@ -23,8 +23,6 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-# This folder's grpc.py (a benchmark) would shadow the grpc package: drop the script's folder from the path.
-sys.path = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
 sys.path.insert(0, str(ROOT / "tests" / "api"))
 
 from test_agent_link import EXAMPLE, HOST, InProcessTwin  # noqa: E402

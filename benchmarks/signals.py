@@ -24,9 +24,6 @@ import tempfile
 import time
 from pathlib import Path
 
-# benchmarks/grpc.py is beside this file: keep the folder off the import path so that ``import grpc`` is the library.
-sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
-
 CLI = [sys.executable, "-c", "from seatwin.cli.main import main; main()"]
 
 

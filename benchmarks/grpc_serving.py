@@ -21,7 +21,7 @@ OSP/Gemini client is):
   (process and stepping-thread CPU), and that hour-old run's steps interleaved with a new run's at 200 s
   (and, as a control of the machine's noise, two new runs at 200 s interleaved).
 
-Each part prints a JSON line; the last line is all of them. ``python benchmarks/grpc.py [--steps N]
+Each part prints a JSON line; the last line is all of them. ``python benchmarks/grpc_serving.py [--steps N]
 [--parts served,transport]``.
 """
 
@@ -36,9 +36,6 @@ import tempfile
 import time
 from concurrent import futures
 from pathlib import Path
-
-# This file is named grpc.py: keep its folder off the import path so that ``import grpc`` is the library.
-sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
 
 SCENARIO = "ferry_crossing"
 SENSORS = ("lidar", "radar")
