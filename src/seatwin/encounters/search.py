@@ -16,7 +16,7 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import NDArray
 
-from seatwin.encounters.space import Trial, latin_hypercube
+from seatwin.encounters.space import Trial, TrialLog
 from seatwin.errors import ParameterError
 
 LENGTH_SCALES = (0.1, 0.15, 0.2, 0.3, 0.45, 0.7, 1.0)
@@ -64,16 +64,10 @@ def surrogate_search(
             "budget", f"expected a budget, an initial design and candidates of at least 1, got {budget}, {initial}, {candidates}"
         )
     rng = np.random.default_rng(seed)
-    trials: list[Trial] = []
-
-    def run(u: NDArray[np.float64]) -> bool:
-        score = float(evaluate(u))
-        trials.append(Trial(len(trials), tuple(float(v) for v in u), score))
-        return stop_at_failure and score < 0
-
-    for u in latin_hypercube(dimension, min(initial, budget), seed):
-        if run(u):
-            return trials
+    log = TrialLog(evaluate, stop_at_failure)
+    if log.initial_design(dimension, min(initial, budget), seed):
+        return log.trials
+    trials = log.trials
     while len(trials) < budget:
         x = np.array([t.point for t in trials])
         raw = np.array([t.score for t in trials])
@@ -87,6 +81,6 @@ def surrogate_search(
         mu = ks @ alpha
         v = np.linalg.solve(chol, ks.T)
         sigma = np.sqrt(np.maximum(1.0 - (v * v).sum(0), 0.0))
-        if run(cand[int(np.argmin(mu - kappa * sigma))]):
-            return trials
+        if log.run(cand[int(np.argmin(mu - kappa * sigma))]):
+            break
     return trials

@@ -171,6 +171,23 @@ class Trial:
     """The evaluation's robustness: < 0 a failure (e.g. minimum distance − safety distance)."""
 
 
+class TrialLog:
+    """A search's trials so far: :meth:`run` evaluates one point, :meth:`initial_design` a Latin hypercube; both
+    say whether the search should stop (a failure, score < 0, with ``stop_at_failure``)."""
+
+    def __init__(self, evaluate: Callable[[NDArray[np.float64]], float], stop_at_failure: bool) -> None:
+        self.evaluate, self.stop_at_failure = evaluate, stop_at_failure
+        self.trials: list[Trial] = []
+
+    def run(self, u: NDArray[np.float64]) -> bool:
+        score = float(self.evaluate(u))
+        self.trials.append(Trial(len(self.trials), tuple(float(v) for v in u), score))
+        return self.stop_at_failure and score < 0
+
+    def initial_design(self, dimension: int, n: int, seed: int) -> bool:
+        return any(self.run(u) for u in latin_hypercube(dimension, n, seed))
+
+
 def adaptive_search(
     evaluate: Callable[[NDArray[np.float64]], float],
     dimension: int,
@@ -188,21 +205,14 @@ def adaptive_search(
     if budget < 1 or initial < 1:
         raise ParameterError("budget", f"expected a budget and an initial design of at least 1 run, got {budget}, {initial}")
     rng = np.random.default_rng(seed)
-    trials: list[Trial] = []
-
-    def run(u: NDArray[np.float64]) -> bool:
-        score = float(evaluate(u))
-        trials.append(Trial(len(trials), tuple(float(v) for v in u), score))
-        return stop_at_failure and score < 0
-
-    for u in latin_hypercube(dimension, min(initial, budget), seed):
-        if run(u):
-            return trials
+    log = TrialLog(evaluate, stop_at_failure)
+    if log.initial_design(dimension, min(initial, budget), seed):
+        return log.trials
     step = sigma
-    while len(trials) < budget:
-        best = min(trials, key=lambda t: t.score)
+    while len(log.trials) < budget:
+        best = min(log.trials, key=lambda t: t.score)
         u = np.clip(np.asarray(best.point) + step * rng.standard_normal(dimension), 0.0, 1.0)
-        if run(u):
-            return trials
+        if log.run(u):
+            break
         step = max(step * shrink, 0.02)
-    return trials
+    return log.trials
