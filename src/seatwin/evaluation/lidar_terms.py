@@ -185,9 +185,21 @@ def lidar_term_specs(range_edges: Sequence[float] = LIDAR_RANGE_EDGES_M) -> dict
     return specs
 
 
-def _flatten(samples: Sequence[dict[str, LidarReturnSample]]) -> list[LidarReturnSample]:
+def flatten_samples(samples: Sequence[dict[str, LidarReturnSample]]) -> list[LidarReturnSample]:
     """Every (run, target) series: each is bootstrapped on its own, in blocks of scans."""
     return [s for run in samples for _, s in sorted(run.items())]
+
+
+def term_series(
+    flat: Sequence[LidarReturnSample], range_edges: Sequence[float] = LIDAR_RANGE_EDGES_M
+) -> dict[str, list[NDArray[np.float64]]]:
+    """Each term's values, one series per (run, target) series of ``flat`` — the input of :func:`combined_distance`."""
+    return {k: [t.series(s) for s in flat] for k, t in lidar_term_specs(range_edges).items()}
+
+
+def returns_block_length(flat: Sequence[LidarReturnSample]) -> int:
+    """The lidar terms' bootstrap block length, chosen from the series' detection indicator and point count."""
+    return runs_block_length([x for s in flat for x in (s.detected, s.points)])
 
 
 def lidar_terms(
@@ -198,7 +210,7 @@ def lidar_terms(
 ) -> dict[str, SignedTerm]:
     """Every lidar sensor-level term (:func:`lidar_term_specs`) of real runs against synthetic runs (each a dict
     target → :class:`LidarReturnSample`), one by one (:func:`seatwin.evaluation.plot_terms.signed_term`)."""
-    rr, ss = _flatten(real), _flatten(synthetic)
+    rr, ss = flatten_samples(real), flatten_samples(synthetic)
     return {
         k: signed_term(
             f"lidar {t.label}", t.unit, [t.series(s) for s in rr], [t.series(s) for s in ss], t.statistic, options, t.directions
@@ -278,18 +290,16 @@ def lidar_returns_score(
     target) series, the block length chosen from the data (detection indicator and point count); every term of a
     replicate uses the same resample."""
     o = options or ScoreOptions()
-    rr, ss = _flatten(real), _flatten(synthetic)
+    rr, ss = flatten_samples(real), flatten_samples(synthetic)
     if not rr or not ss:
         return _refused("no lidar returns (no truthed target, or not a lidar)")
-    specs = lidar_term_specs(range_edges)
-    ser_r = {k: [t.series(s) for s in rr] for k, t in specs.items()}
-    ser_s = {k: [t.series(s) for s in ss] for k, t in specs.items()}
+    ser_r, ser_s = term_series(rr, range_edges), term_series(ss, range_edges)
     value, dist = combined_distance(ser_r, ser_s, o.n_min)
     counts: dict[str, float] = {"n_series_real": len(rr), "n_series_synthetic": len(ss)}
     counts |= {f"d_{k}": v for k, v in dist.items()}
     if not np.isfinite(value):
         return _refused(f"no lidar term has {o.n_min} values on both sides", **counts)
-    block = o.block if o.block is not None else runs_block_length([x for s in rr + ss for x in (s.detected, s.points)])
+    block = o.block if o.block is not None else returns_block_length(rr + ss)
     counts["block"] = block
     reps = _replicates(
         o,

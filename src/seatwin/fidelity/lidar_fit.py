@@ -161,10 +161,9 @@ def simulated_samples(setup: FitSetup, config: LidarConfig, seed: int) -> dict[s
 
 
 def _series(samples: Sequence[dict[str, LidarReturnSample]]) -> dict[str, list[NDArray[np.float64]]]:
-    from seatwin.evaluation.lidar_terms import _flatten, lidar_term_specs
+    from seatwin.evaluation.lidar_terms import flatten_samples, term_series
 
-    flat = _flatten(samples)
-    return {k: [t.series(s) for s in flat] for k, t in lidar_term_specs().items()}
+    return term_series(flatten_samples(samples))
 
 
 @dataclass
@@ -256,8 +255,7 @@ def fit_lidar(
     best, and of the :data:`RIDGE` pair together; up to :data:`PASSES` passes while one improves; the step halves
     each round). Intervals from ``n_boot`` block-bootstrap replicates (module docstring; ``seed``).
     Deterministic for the same inputs. ``progress(n)`` is called after each candidate."""
-    from seatwin.evaluation.bootstrap import runs_block_length
-    from seatwin.evaluation.lidar_terms import _flatten, combined_distance
+    from seatwin.evaluation.lidar_terms import combined_distance, flatten_samples, returns_block_length
 
     if rounds < 0:
         raise ParameterError("rounds", f"expected 0 or more refinement rounds, got {rounds}")
@@ -302,8 +300,8 @@ def fit_lidar(
                 break
         step = {k: v / 2 for k, v in step.items()}
     cands = list(tried.values())
-    # The score's block rule (lidar_returns_score): from the real series' detection indicator and point count.
-    block = runs_block_length([x for s in _flatten(real) for x in (s.detected, s.points)])
+    # The score's block rule (lidar_returns_score), on the real series.
+    block = returns_block_length(flatten_samples(real))
     reps = bootstrap_best(ser_r, cands, n_boot, seed, n_min, block) if n_boot else []
     params: dict[str, dict[str, Any]] = {}
     for name in PARAMETERS:
