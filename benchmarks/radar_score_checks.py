@@ -1,15 +1,15 @@
 """Issue 22's checks of the radar sensor score by simulation (docs/fidelity-score.md, *Evaluations of issue 22*).
 
     .venv/bin/python benchmarks/radar_score_checks.py calibration [PAIRS] [SCANS] [WORKERS] [DRIFTING_PAIRS] [BUDGET_S.]
-    .venv/bin/python benchmarks/radar_score_checks.py controlled [RECORDINGS] [SCANS] [WORKERS] [BUDGET_S.]
+    .venv/bin/python benchmarks/radar_score_checks.py controlled [RECORDINGS] [SCANS] [WORKERS] [BUDGET_S.] [FIRST]
     .venv/bin/python benchmarks/radar_score_checks.py power [PAIRS] [SCANS] [WORKERS]
 
 * ``calibration`` (default 50 pairs of 238 scans): the coverage of every signed plot-level term's 95 % interval
   over pairs of recordings of one known model, as ``plot_terms_calibration.py`` measures it, plain and with a
   drifting bearing offset (AR(1), φ 0.9, stationary σ 0.3°) — the autocorrelated case;
-* ``controlled`` (default 40 recordings of 238 scans): parameters drawn at random per recording, the true model
-  against 10 wrong ones ranked by the radar sensor score; how often the true model is first, and how often bearing
-  bias +1°, σ_r × 2, σ_θ × 2 and Pd cap ∓ 0.2 are resolved;
+* ``controlled`` (default 40 recordings of 238 scans, indices from FIRST, default 0): parameters drawn at random
+  per recording, the true model against 10 wrong ones ranked by the radar sensor score; how often the true model is
+  first, and how often bearing bias +1°, σ_r × 2, σ_θ × 2 and Pd cap ∓ 0.2 are resolved;
 * ``power`` (default 20 pairs at 1×, 2×, 4× of 238 scans): the minimum detectable difference per term.
 
 Each prints a table and, on its last line, its figures as JSON. Radar-only (no tracker): a recording is the
@@ -135,12 +135,13 @@ def calibration(
 # --- controlled ranking and resolution ---------------------------------------------------------------------------
 
 
-def controlled(recordings: int = 40, scans: int = 238, workers: int = 2, budget_s: float = 1e9) -> dict[str, Any]:
-    """The controlled check; with ``budget_s``, only the recordings done within it (in index order) count."""
+def controlled(recordings: int = 40, scans: int = 238, workers: int = 2, budget_s: float = 1e9, first: int = 0) -> dict[str, Any]:
+    """The controlled check of recordings ``first`` … ``first + recordings − 1``; with ``budget_s``, only the
+    recordings done within it (in index order) count."""
     t0 = time.perf_counter()
     rows = []
     with ProcessPoolExecutor(workers) as pool:
-        futures = [pool.submit(controlled_recording, i, scans) for i in range(recordings)]
+        futures = [pool.submit(controlled_recording, i, scans) for i in range(first, first + recordings)]
         for f in futures:
             left = budget_s - (time.perf_counter() - t0)
             if left <= 0:
@@ -155,19 +156,26 @@ def controlled(recordings: int = 40, scans: int = 238, workers: int = 2, budget_
     if not recordings:
         print("no recording finished within the budget")
         return {"recordings": 0}
-    first = sum(r["true_first"] for r in rows)
+    n_first = sum(r["true_first"] for r in rows)
     print(f"{recordings} recordings of {scans} scans, parameters drawn at random; 11 candidate models, {SYNTHETIC_SEEDS} seeds")
-    print(f"true model first in {first} of {recordings} ({first / recordings:.0%})")
+    print(f"true model first in {n_first} of {recordings} ({n_first / recordings:.0%})")
     for r in rows:
         if not r["true_first"]:
             print(f"  recording {r['index']}: true model ranked {r['rank_of_true']}, first {r['runner_up']}; true {r['true']}")
-    out: dict[str, Any] = {"recordings": recordings, "scans": scans, "true_first": first / recordings, "resolution": {}}
+    out: dict[str, Any] = {"recordings": recordings, "scans": scans, "true_first": n_first / recordings, "resolution": {}}
     print(f"{'wrong model':<18} {'term intervals disjoint':>24} {'score intervals disjoint':>25} {'score lead resolved':>20}")
     for label in RESOLVE:
         kinds = ("term_disjoint", "score_disjoint", "lead_resolved")
         share = {k: sum(r["resolved"][label][k] for r in rows) / recordings for k in kinds}
         out["resolution"][label] = share
-        print(f"{label:<18} {share['term_disjoint']:>24.0%} {share['score_disjoint']:>25.0%} {share['lead_resolved']:>20.0%}")
+        bin_note = ""
+        if "busiest_bin_disjoint" in rows[0]["resolved"][label]:
+            share["busiest_bin_disjoint"] = sum(r["resolved"][label]["busiest_bin_disjoint"] for r in rows) / recordings
+            bin_note = f"   (first protocol's term, the busiest range bin: {share['busiest_bin_disjoint']:.0%})"
+        print(
+            f"{label:<18} {share['term_disjoint']:>24.0%} {share['score_disjoint']:>25.0%} {share['lead_resolved']:>20.0%}"
+            + bin_note
+        )
     out["rows"] = rows
     out["seconds"] = round(time.perf_counter() - t0, 1)
     print(json.dumps({k: v for k, v in out.items() if k != "rows"}))
@@ -232,4 +240,4 @@ def power(pairs: int = 20, scans: int = 238, workers: int = 2) -> dict[str, Any]
 if __name__ == "__main__":
     what = sys.argv[1] if len(sys.argv) > 1 else "calibration"
     fn = {"calibration": calibration, "controlled": controlled, "power": power}[what]
-    fn(*(float(a) if "." in a else int(a) for a in sys.argv[2:7]))
+    fn(*(float(a) if "." in a else int(a) for a in sys.argv[2:8]))

@@ -305,7 +305,8 @@ class TermSpec:
 
 def radar_term_specs(area_km2: float, range_edges: Sequence[float] = PD_RANGE_EDGES_M) -> dict[str, TermSpec]:
     """The radar plot-level terms: bearing and range bias (mean error), bearing and range σ (:func:`robust_sigma` of
-    the error), detection probability per range bin of ``range_edges`` and per aspect bin (:data:`ASPECT_EDGES_DEG`),
+    the error), detection probability over all of ``range_edges`` (``pd_all``: one number for the whole detection process,
+    the term with the most scans), per range bin of ``range_edges`` and per aspect bin (:data:`ASPECT_EDGES_DEG`),
     clutter plots per scan and per km² (``area_km2``: the area the radar covers, the same for both sides) and per scan
     in each range annulus of ``range_edges``."""
 
@@ -320,6 +321,8 @@ def radar_term_specs(area_km2: float, range_edges: Sequence[float] = PD_RANGE_ED
         "bearing_sigma": TermSpec("bearing σ", "°", lambda s: s.bearing_error, clipped_sigma, ("wide", "narrow")),
         "range_sigma": TermSpec("range σ", "m", lambda s: s.range_error, clipped_sigma, ("wide", "narrow")),
     }
+    lo_all, hi_all = float(range_edges[0]), float(range_edges[-1])
+    specs["pd_all"] = TermSpec(f"Pd {lo_all:.0f}–{hi_all:.0f} m (all)", "", partial(_in_bin, lo=lo_all, hi=hi_all), _mean)
     for lo, hi in zip(range_edges[:-1], range_edges[1:]):
         specs[f"pd_{lo:.0f}_{hi:.0f}m"] = TermSpec(f"Pd {lo:.0f}–{hi:.0f} m", "", partial(_in_bin, lo=lo, hi=hi), _mean)
     for name, lo, hi in zip(ASPECT_NAMES, ASPECT_EDGES_DEG[:-1], ASPECT_EDGES_DEG[1:]):
