@@ -190,6 +190,7 @@ POWER_TERMS = {
     "bearing_sigma": ("× σ_θ", 1.0 / KNOWN.noise.bearing_sigma_deg),
     "range_sigma": ("× σ_r", 1.0 / KNOWN.noise.range_sigma_m),
     "pd_250_500m": ("", 1.0),
+    "pd_all": ("", 1.0),
     "clutter_per_scan": ("× rate", None),
 }
 """The terms of the power check, their parameter unit and the factor from the term's unit to it (None: relative to the
