@@ -30,18 +30,23 @@ demo: $(STAMP)
 	rm -rf runs/demo
 	$(VENV)/bin/seatwin demo --out runs/demo
 
+# Tests run on TEST_WORKERS pytest-xdist workers (one per core of a 2-core machine); --dist loadgroup keeps
+# the tests of one xdist_group (a chain of README commands, the Ray tests) on one worker. TEST_WORKERS=0: one process.
+TEST_WORKERS ?= 2
+PYTEST := $(PY) -m pytest -n $(TEST_WORKERS) --dist loadgroup
+
 # The whole suite, after lint. Tests run even when lint fails; the target fails if either
 # does. pytest's exit status 5 (no test collected) is reported as such.
 test: $(STAMP)
 	@lint=0; $(MAKE) --no-print-directory lint || lint=$$?; \
-	$(PY) -m pytest -q --durations=25; rc=$$?; \
+	$(PYTEST) -q --durations=25; rc=$$?; \
 	if [ $$rc -eq 5 ]; then echo "no tests were collected"; fi; \
 	if [ $$lint -ne 0 ]; then echo "make test: lint failed (see above; 'make lint' shows it again)"; fi; \
 	if [ $$rc -ne 0 ]; then exit $$rc; fi; exit $$lint
 
 # The fast lane: everything not marked slow (long tests, end to end runs on ../shared/data).
 test-fast: $(STAMP)
-	$(PY) -m pytest -q -m "not slow"
+	$(PYTEST) -q --durations=10 -m "not slow"
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check src tests benchmarks

@@ -196,15 +196,17 @@ def test_sensordata_serves_the_latest_frame_and_streams_the_next(lidar_server, t
     got: list[bytes] = []
     with SimulationClient(h.address) as c:
         c.set_start_time(START)
-        for k in range(2):  # the sweep at 0.0 s
+        for k in range(3):  # the sweep at 0.0 s (made at the step after its span: the third)
             c.step(POSES, k * 0.1, 0.1)
+        first = data.TransferSensordata(sensordata_pb2.SensordataRequest(operation="1"))
         stream = data.StreamSensordata(sensordata_pb2.SensordataRequest(operation="streaming"))  # Gemini's client's operation
         reader = threading.Thread(target=lambda: got.extend(r.data for r in stream))
         reader.start()
         deadline = time.monotonic() + 30
-        while not got and time.monotonic() < deadline:  # the stream begins with the latest frame
+        while not got and time.monotonic() < deadline:  # the stream begins with the latest frame, before any new one
             time.sleep(0.01)
-        for k in range(2, 8):
+        assert got == [first.data] and first.dataLength > 0
+        for k in range(3, 8):
             c.step(POSES, k * 0.1, 0.1)
         latest = data.TransferSensordata(sensordata_pb2.SensordataRequest(operation="1"))
     h.stop()  # the stream ends with the server

@@ -135,7 +135,10 @@ def local_ray():
     ray.shutdown()
 
 
+# The tests that start Ray share one xdist group (``make test`` runs --dist loadgroup): one worker runs them, so
+# they share this module's Ray instance and two Ray instances never start side by side on the test machine.
 @pytest.mark.slow
+@pytest.mark.xdist_group("ray")
 def test_ray_rows_equal_the_sequential_runs(tmp_path, local_ray):
     spec = load_campaign(_spec(tmp_path))
     seq = run_campaign(spec, tmp_path / "seq", engine="sequential")
@@ -156,6 +159,7 @@ def test_ray_rows_equal_the_sequential_runs(tmp_path, local_ray):
 
 
 @pytest.mark.slow
+@pytest.mark.xdist_group("ray")
 def test_cli_on_ray_with_a_failing_job(tmp_path, local_ray, capsys):
     text = TINY.replace("[1, 2]", "[3]").replace("lidar_mode: [depthbuffer, raycast]", "harbour: [default, /no/land.bin]")
     out = tmp_path / "out"

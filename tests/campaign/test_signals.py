@@ -46,7 +46,8 @@ def _finished_records(jobs: Path) -> list[dict]:
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("workers", ["0", "1"])  # in this process; on a local Ray (whose ray.init replaces the SIGTERM handler)
+# in this process; on a local Ray (whose ray.init replaces the SIGTERM handler), in the xdist group of the Ray tests
+@pytest.mark.parametrize("workers", ["0", pytest.param("1", marks=pytest.mark.xdist_group("ray"))])
 def test_campaign_stops_on_sigterm_as_on_ctrl_c(tmp_path: Path, workers: str) -> None:
     spec = tmp_path / "campaign.yaml"
     spec.write_text(TINY)

@@ -38,7 +38,8 @@ def test_rotation_is_compass_sense() -> None:
 
 def test_alignment_file_round_trip_and_bad_files(tmp_path) -> None:
     al = Alignment(-12.5, 1.0, -2.0, 0.25, 3.0)
-    p = write_alignment(tmp_path / "a.yaml", al, {"sources": ["x.csv"]})
+    p = write_alignment(tmp_path / "new" / "a.yaml", al, {"sources": ["x.csv"]})  # a missing folder is made
+    assert p == tmp_path / "new" / "a.yaml" and [f.name for f in p.parent.iterdir()] == ["a.yaml"]  # no temporary left
     back, prov = read_alignment(p)
     assert back == al and prov == {"sources": ["x.csv"]}
     p.write_text("rotation_deg: nine\n")

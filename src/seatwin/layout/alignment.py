@@ -102,14 +102,18 @@ def read_alignment(path: str | Path) -> tuple[Alignment, dict[str, Any]]:
 
 
 def write_alignment(path: str | Path, alignment: Alignment, provenance: dict[str, Any] | None = None) -> Path:
-    """Write ``alignment`` (and ``provenance``) as YAML at ``path``; returns the path."""
+    """Write ``alignment`` (and ``provenance``) as YAML at ``path`` (missing folders made; through a temporary file
+    renamed at the end); returns the path."""
+    from seatwin.outputs import write_text_atomic
+
     p = Path(path)
     data: dict[str, Any] = {k: round(float(v), 6) for k, v in asdict(alignment).items()}
     if provenance:
         data["provenance"] = provenance
-    p.write_text(
+    write_text_atomic(
+        p,
         "# Scenario frame -> map frame: map = R(rotation_deg, clockwise)·(p − centre) + centre + shift (metres, NED).\n"
-        + yaml.safe_dump(data, sort_keys=False, allow_unicode=True)
+        + yaml.safe_dump(data, sort_keys=False, allow_unicode=True),
     )
     return p
 
