@@ -32,7 +32,7 @@ import tempfile
 import threading
 import time
 import urllib.request
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import ExitStack, contextmanager
 from dataclasses import dataclass, field
 from http.server import SimpleHTTPRequestHandler, ThreadingHTTPServer
@@ -278,14 +278,15 @@ ALERTS_JS = r"""
 """
 
 
-def listed_topics(text: str) -> dict[str, tuple[str, int]]:
-    """Topic → (schema, message count) from the page's text with the Topics list open (each topic a line, then
-    its schema, rate and count)."""
+def listed_topics(text: str) -> dict[str, tuple[str, int | None]]:
+    """Topic → (schema, message count) from the page's text with the Topics list open: each topic a line, then its
+    schema, its rate ("—" while unknown) and its count ("—", here None: advertised, nothing received)."""
     lines = [ln.strip() for ln in text.splitlines()]
-    out: dict[str, tuple[str, int]] = {}
-    for i, line in enumerate(lines[:-3]):
-        if line.startswith("/") and re.fullmatch(r"[\w]+/msg/[\w]+", lines[i + 1]) and lines[i + 3].isdigit():
-            out[line] = (lines[i + 1], int(lines[i + 3]))
+    out: dict[str, tuple[str, int | None]] = {}
+    for i, line in enumerate(lines[:-1]):
+        if line.startswith("/") and re.fullmatch(r"\w+/msg/\w+", lines[i + 1]):
+            has_count = i + 3 < len(lines) and (lines[i + 2].endswith("Hz") or lines[i + 2] == "—") and lines[i + 3].isdigit()
+            out[line] = (lines[i + 1], int(lines[i + 3]) if has_count else None)
     return out
 
 
@@ -357,8 +358,6 @@ def screenshot_run(
     seconds after its first message, and screenshot it once the panels are up, the player is ready, every panel
     has drawn and two screenshots a second apart agree. Before that, the viewer's Topics and Alerts lists are read
     (then its left sidebar closed, unless ``close_sidebar`` is False)."""
-    import numpy as np
-
     executable = browser or find_browser()
     if executable is None:
         raise FileNotFoundError("no Chromium-family browser on PATH")
@@ -372,39 +371,118 @@ def screenshot_run(
     extra = {"/seatwin/run.mcap": mcap, "/seatwin/seatwin-layout.json": layout}
     n_panels = len(_leaves(json.loads(layout.read_text())["layout"]))
     with serve(dist, extra) as base:
-        page = Browser(executable, width, height)
+        url = viewer_url(base, at)
+        return _shoot(executable, url, n_panels, width, height, live=False, close_sidebar=close_sidebar, timeout_s=timeout_s)
+
+
+def screenshot_live(
+    dist: Path,
+    run: Path,
+    *,
+    layout: Path = LAYOUT,
+    width: int = 1400,
+    height: int = 850,
+    close_sidebar: bool = True,
+    timeout_s: float = 180.0,
+    browser: str | None = None,
+) -> ViewerShot:
+    """``run`` served as ``seatwin view RUN`` serves it (:class:`~seatwin.recording.view.RecordingViewer`, the
+    Foxglove SDK's WebSocket server, played in a loop at real time) and watched in the viewer built at ``dist``
+    through its Foxglove WebSocket connection with ``layout``; screenshot once the panels are up and have drawn
+    (the page is live: no stillness is waited for)."""
+    from seatwin.recording.view import RecordingViewer
+
+    executable = browser or find_browser()
+    if executable is None:
+        raise FileNotFoundError("no Chromium-family browser on PATH")
+    if not (dist / "index.html").is_file():
+        raise FileNotFoundError(f"{dist}: no index.html (the viewer's web build)")
+    n_panels = len(_leaves(json.loads(layout.read_text())["layout"]))
+    stop = threading.Event()
+    with RecordingViewer(run, port=0) as viewer, serve(dist, {"/seatwin/seatwin-layout.json": layout}) as base:
+        port = viewer.start()
+        player = threading.Thread(target=viewer.play_loop, args=(1.0, stop), daemon=True)
+        player.start()
+
+        def stop_serving() -> None:  # before the browser goes: the server would log every message it cannot send
+            stop.set()
+            player.join(timeout=10)
+            viewer.close()
+
         try:
-            url = viewer_url(base, at)
-            t0 = time.monotonic()
-            page.navigate(url)
-            state: dict[str, Any] = {}
-            while not (len(state.get("panels", [])) >= n_panels and state.get("playReady")):
+            url = f"{base}/?ds=foxglove-websocket&ds.url={quote(f'ws://127.0.0.1:{port}', safe='')}"
+            url += f"&layoutUrl={quote(base + '/seatwin/seatwin-layout.json', safe='')}"
+            return _shoot(
+                executable, url, n_panels, width, height, live=True, close_sidebar=close_sidebar, timeout_s=timeout_s,
+                before_close=stop_serving,
+            )  # fmt: skip
+        finally:
+            stop_serving()
+
+
+def _shoot(
+    executable: str,
+    url: str,
+    n_panels: int,
+    width: int,
+    height: int,
+    *,
+    live: bool,
+    close_sidebar: bool,
+    timeout_s: float,
+    before_close: Callable[[], None] | None = None,
+) -> ViewerShot:
+    """Open ``url``, wait for ``n_panels`` panels (and a ready player unless ``live``), read the Topics and Alerts
+    lists, close the sidebar, wait until every panel has drawn (and, unless ``live``, two screenshots a second
+    apart agree) and screenshot."""
+    import numpy as np
+
+    page = Browser(executable, width, height)
+    try:
+        t0 = time.monotonic()
+        page.navigate(url)
+        state: dict[str, Any] = {}
+        while not (len(state.get("panels", [])) >= n_panels and (live or state.get("playReady"))):
+            if time.monotonic() - t0 > timeout_s:
+                raise TimeoutError(f"viewer not ready after {timeout_s:.0f} s: {json.dumps(state)[:2000]}")
+            time.sleep(0.5)
+            state = page.evaluate(PAGE_STATE_JS) or {}
+        previous = None
+        if live:  # the topics arrive with the connection: wait until every panel has drawn
+            while not _drawn(page.screenshot(), state["panels"])[0]:
                 if time.monotonic() - t0 > timeout_s:
-                    raise TimeoutError(f"viewer not ready after {timeout_s:.0f} s: {json.dumps(state)[:2000]}")
-                time.sleep(0.5)
-                state = page.evaluate(PAGE_STATE_JS) or {}
-            # The Topics list is virtualised (only the rows in view exist): read it in a page tall enough for all.
-            page.call("Emulation.setDeviceMetricsOverride", width=width, height=4000, deviceScaleFactor=1, mobile=False)
-            topics = page.evaluate(f"{SIDEBAR_TAB_JS}('topics-left')") or ""
-            page.call("Emulation.setDeviceMetricsOverride", width=width, height=height, deviceScaleFactor=1, mobile=False)
-            page.evaluate(f"{SIDEBAR_TAB_JS}('alerts-left')")
-            alerts = [(SEVERITY.get(a["fill"], a["fill"] or "?"), a["message"]) for a in page.evaluate(ALERTS_JS) or []]
-            if close_sidebar:
-                page.evaluate("document.querySelector('[data-testid=sidebar-close-left]')?.click()")
-            previous = None
-            while True:  # every panel drawn, and the page still
+                    raise TimeoutError(f"the panels did not draw in {timeout_s:.0f} s")
                 time.sleep(1.0)
                 state = page.evaluate(PAGE_STATE_JS) or {}
-                png = page.screenshot()
-                drawn, px = _drawn(png, state["panels"])
-                if drawn and previous is not None and float(np.mean(np.abs(px - previous) > 8)) < 0.002:
-                    break
-                if time.monotonic() - t0 > timeout_s:
-                    raise TimeoutError(f"the panels did not settle in {timeout_s:.0f} s (drawn: {drawn})")
-                previous = px
-            return ViewerShot(png, url, state, topics, alerts, list(page.console), time.monotonic() - t0)
-        finally:
-            page.close()
+        # The Topics list is virtualised (only the rows in view exist): read it in a page tall enough for all.
+        page.call("Emulation.setDeviceMetricsOverride", width=width, height=4000, deviceScaleFactor=1, mobile=False)
+        topics, listed, seen = "", {}, None
+        while not listed or set(listed) != seen:  # the list fills as the source is read: until it holds still
+            if time.monotonic() - t0 > timeout_s:
+                raise TimeoutError(f"the Topics list did not fill in {timeout_s:.0f} s")
+            seen = set(listed)
+            topics = page.evaluate(f"{SIDEBAR_TAB_JS}('topics-left')") or ""
+            listed = listed_topics(topics)
+        page.call("Emulation.setDeviceMetricsOverride", width=width, height=height, deviceScaleFactor=1, mobile=False)
+        page.evaluate(f"{SIDEBAR_TAB_JS}('alerts-left')")
+        alerts = [(SEVERITY.get(a["fill"], a["fill"] or "?"), a["message"]) for a in page.evaluate(ALERTS_JS) or []]
+        if close_sidebar:
+            page.evaluate("document.querySelector('[data-testid=sidebar-close-left]')?.click()")
+        while True:  # every panel drawn, and (a recording) the page still
+            time.sleep(1.0)
+            state = page.evaluate(PAGE_STATE_JS) or {}
+            png = page.screenshot()
+            drawn, px = _drawn(png, state["panels"])
+            if drawn and (live or (previous is not None and float(np.mean(np.abs(px - previous) > 8)) < 0.002)):
+                break
+            if time.monotonic() - t0 > timeout_s:
+                raise TimeoutError(f"the panels did not settle in {timeout_s:.0f} s (drawn: {drawn})")
+            previous = px
+        return ViewerShot(png, url, state, topics, alerts, list(page.console), time.monotonic() - t0)
+    finally:
+        if before_close is not None:
+            before_close()
+        page.close()
 
 
 def _leaves(node: Any) -> list[str]:
@@ -436,11 +514,15 @@ def main() -> None:
     ap.add_argument("--layout", type=Path, default=LAYOUT)
     ap.add_argument("--at", type=float, default=None, help="seconds after the run's first message")
     ap.add_argument("--size", default="1400x850", help="viewport WIDTHxHEIGHT")
+    ap.add_argument("--live", action="store_true", help="serve the run as `seatwin view` does (Foxglove WebSocket), not by URL")
     args = ap.parse_args()
     if args.dist is None:
         ap.error("--dist or SEATWIN_VIEWER_DIST: the built web viewer (its folder with index.html)")
     w, h = (int(v) for v in args.size.lower().split("x"))
-    shot = screenshot_run(args.dist, args.run, layout=args.layout, at_s=args.at, width=w, height=h)
+    if args.live:
+        shot = screenshot_live(args.dist, args.run, layout=args.layout, width=w, height=h)
+    else:
+        shot = screenshot_run(args.dist, args.run, layout=args.layout, at_s=args.at, width=w, height=h)
     save_png(shot.png, args.out)
     print(f"{args.out}: {args.out.stat().st_size / 1e3:.0f} kB, {w}×{h}, ready after {shot.waited_s:.1f} s; {shot.url}")
     for p in shot.state.get("panels", []):

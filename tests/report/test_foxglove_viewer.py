@@ -100,24 +100,57 @@ def test_page_server_serves_byte_ranges(tmp_path: Path) -> None:
         assert err.value.code == 416
 
 
-@pytest.mark.slow
-def test_tracked_run_in_lichtblick(tmp_path: Path) -> None:
-    from PIL import Image
-
+@pytest.fixture(scope="module")
+def tracked(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A 4 s ferry_crossing run at +36 s with lidar, radar and cameras, tracked into a copy (skips first when
+    there is no viewer build or browser)."""
     from seatwin.pipeline.simulate import simulate_run
     from seatwin.pipeline.track import track_into_run
+
+    _dist()
+    if _tool().find_browser() is None:
+        pytest.skip("no Chromium-family browser on PATH")
+    tmp = tmp_path_factory.mktemp("viewer")
+    simulate_run(
+        "ferry_crossing", tmp / "run", duration=4.0, start_offset=36.0, sensors=("lidar", "radar", "camera"), progress=False
+    )
+    _, copy = track_into_run(tmp / "run", tmp / "tracked")
+    return Path(copy.path)
+
+
+def _radar_pixels(scene: np.ndarray) -> int:
+    """Pixels in the layout's flat radar colour #ff3b30 (255/59/48; the lidar's turbo reds are darker or yellower)."""
+    scene = scene.astype(int)
+    return int(((abs(scene[..., 0] - 255) <= 8) & (abs(scene[..., 1] - 59) <= 12) & (abs(scene[..., 2] - 48) <= 12)).sum())
+
+
+def _crop(png: np.ndarray, p: dict) -> np.ndarray:
+    x, y, w, h = (round(v) for v in p["canvas"])  # the panel below its toolbar
+    assert w > 200 and h > 150, p
+    return png[y : y + h, x : x + w]
+
+
+def _panels(state: dict) -> tuple[list[dict], dict]:
+    """The layout's places: the three image panels in the top row, left to right, and the 3-D panel below."""
+    panels = state["panels"]
+    assert len(panels) == len(json.loads(LAYOUT.read_text())["configById"]) == 4
+    top = sorted((p for p in panels if p["rect"][1] < 100), key=lambda p: p["rect"][0])
+    assert [p["title"] for p in top] == [f"/camera/{cam}/image_raw" for cam in CAMERAS]
+    (scene,) = [p for p in panels if p["rect"][1] >= 100]
+    assert scene["title"] == "3D"
+    return top, scene
+
+
+@pytest.mark.slow
+def test_tracked_run_in_lichtblick(tracked: Path) -> None:
+    from PIL import Image
+
     from seatwin.recording.reader import open_bag
 
-    dist = _dist()
-    tool = _tool()
-    if tool.find_browser() is None:
-        pytest.skip("no Chromium-family browser on PATH")
-    run = tmp_path / "run"
-    simulate_run("ferry_crossing", run, duration=4.0, start_offset=36.0, sensors=("lidar", "radar", "camera"), progress=False)
-    _, tracked = track_into_run(run, tmp_path / "tracked")
+    dist, tool = _dist(), _tool()
     at_s = 3.5
     # What the bag holds at the seek time: each camera's latest annotation (its boxes' corners) and image size.
-    with open_bag(tracked.path) as rec:
+    with open_bag(tracked) as rec:
         t_ns = rec.start_ns + round(at_s * 1e9)
         boxes: dict[str, list[list[tuple[float, float]]]] = {cam: [] for cam in CAMERAS}
         for m in rec.messages([f"/camera/{cam}/annotations" for cam in CAMERAS]):
@@ -126,35 +159,22 @@ def test_tracked_run_in_lichtblick(tmp_path: Path) -> None:
         image = next(rec.messages("/camera/front/image_raw")).msg
         size = (image.width, image.height)
     assert sum(len(b) for b in boxes.values()) > 0
-    channels = _channels(tool.run_mcap(tracked.path))
+    channels = _channels(tool.run_mcap(tracked))
     assert {"/tracks/scene", "/lidar/points", "/radar/detections", "/ground_truth/markers"} <= set(channels)
 
-    shot = tool.screenshot_run(dist, tracked.path, layout=LAYOUT, at_s=at_s, width=1400, height=850)
+    shot = tool.screenshot_run(dist, tracked, layout=LAYOUT, at_s=at_s, width=1400, height=850)
     state = shot.state
     assert "run.mcap" in state["source"]  # the data source is the served run
     # The viewer read every channel of the MCAP, with its schema and message count.
     assert tool.listed_topics(shot.topics_text) == channels
     # No error or warning (a failed Range read, layout fetch or decode); "Transform topics detected" is info.
     assert [a for a in shot.alerts if a[0] != "info"] == [], shot.alerts
-    panels = state["panels"]
-    layout = json.loads(LAYOUT.read_text())
-    assert len(panels) == len(layout["configById"]) == 4
     png = np.asarray(Image.open(io.BytesIO(shot.png)).convert("RGB"))
     assert png.shape == (850, 1400, 3)
-    # The layout's places: the three image panels in the top row, left to right, the 3-D panel below.
-    top = sorted((p for p in panels if p["rect"][1] < 100), key=lambda p: p["rect"][0])
-    assert [p["title"] for p in top] == [f"/camera/{cam}/image_raw" for cam in CAMERAS]
-    (scene_panel,) = [p for p in panels if p["rect"][1] >= 100]
-    assert scene_panel["title"] == "3D"
-
-    def crop(p: dict) -> np.ndarray:
-        x, y, w, h = (round(v) for v in p["canvas"])  # the panel below its toolbar
-        assert w > 200 and h > 150, p
-        return png[y : y + h, x : x + w]
-
+    top, scene_panel = _panels(state)
     edges = 0
     for cam, p in zip(CAMERAS, top):
-        assert crop(p).std() > 15.0, f"{cam}: a blank image panel"
+        assert _crop(png, p).std() > 15.0, f"{cam}: a blank image panel"
         hits, below = _box_edges(png, p["canvas"], size, boxes[cam])
         edges += len(hits)
         # Every box's bottom edge is drawn in the box colour where the bag puts it (the image fitted into the
@@ -162,10 +182,31 @@ def test_tracked_run_in_lichtblick(tmp_path: Path) -> None:
         assert all(h >= 0.8 for h in hits), f"{cam}: box edges drawn {hits} (1 = the whole edge)"
         assert not below or float(np.mean(below)) <= 0.3, f"{cam}: box colour below the edges {below}"
     assert edges >= 1, boxes
-    scene = crop(scene_panel).astype(int)
+    scene = _crop(png, scene_panel)
     assert scene.std() > 8.0, "a blank 3-D panel"
-    # The radar plots in the layout's flat #ff3b30 (255/59/48; the lidar's turbo reds are darker or yellower).
-    radar = (abs(scene[..., 0] - 255) <= 8) & (abs(scene[..., 1] - 59) <= 12) & (abs(scene[..., 2] - 48) <= 12)
-    assert radar.sum() > 30, "no radar plots drawn"
+    assert _radar_pixels(scene) > 30, "no radar plots drawn"
     colours = np.unique(scene.reshape(-1, 3) // 16, axis=0)
     assert len(colours) > 40, f"the 3-D panel draws few colours ({len(colours)}): no cloud, markers or grid"
+
+
+@pytest.mark.slow
+def test_live_run_in_lichtblick(tracked: Path) -> None:
+    """The run as `seatwin view` serves it (the Foxglove SDK's WebSocket server), watched live in the viewer."""
+    from PIL import Image
+
+    dist, tool = _dist(), _tool()
+    shot = tool.screenshot_live(dist, tracked, layout=LAYOUT, width=1400, height=850)
+    source = "".join(shot.state["source"].split())  # the app bar wraps long names
+    assert source.startswith("ws://127.0.0.1:") and f"seatwinview{tracked.name}" in source, shot.state["source"]
+    listed = tool.listed_topics(shot.topics_text)
+    channels = _channels(tool.run_mcap(tracked))
+    # Every topic of the run is advertised with its schema; those the layout shows have messages.
+    assert {t: schema for t, (schema, _) in listed.items()} == {t: schema for t, (schema, _) in channels.items()}
+    shown = {"/lidar/points", "/radar/detections", "/tracks/scene", "/camera/front/image_raw", "/camera/front/annotations"}
+    assert all((listed[t][1] or 0) > 0 for t in shown), {t: listed[t] for t in shown}
+    assert [a for a in shot.alerts if a[0] != "info"] == [], shot.alerts
+    png = np.asarray(Image.open(io.BytesIO(shot.png)).convert("RGB"))
+    top, scene_panel = _panels(shot.state)
+    for cam, p in zip(CAMERAS, top):
+        assert _crop(png, p).std() > 15.0, f"{cam}: a blank image panel"
+    assert _radar_pixels(_crop(png, scene_panel)) > 30, "no radar plots drawn"
