@@ -8,12 +8,15 @@ never ships it. It
    ``Range`` requests and ``Accept-Ranges`` header Lichtblick's remote-file reader needs);
 2. opens ``/?ds=remote-file&ds.url=…/run.mcap&layoutUrl=…/layout.json&time=…`` in headless Chromium, driven
    over the Chrome DevTools Protocol (``websockets``, a test dependency: no browser-automation package);
-3. waits until the layout's panels are up and the player is ready, lets the panels draw, and saves a PNG of
-   the page, with a report of what the page showed (panels, their rectangles, alerts, console errors).
+3. waits until the layout's panels are up and the player is ready, reads the viewer's Topics and Alerts lists,
+   closes its left sidebar, waits until every panel has drawn and the page holds still, and saves a PNG of the
+   page, with a report of what it showed (panels, their places, topics with message counts, alerts).
 
     SEATWIN_VIEWER_DIST=/work/lichtblick/web/.webpack \\
-        python tools/foxglove_screenshot.py runs/ferry.tracked --at 6 --out docs/foxglove/lichtblick.png
+        python tools/foxglove_screenshot.py runs/ferry_fox.tracked --at 8 --out docs/foxglove/lichtblick-view.png
 
+``--live`` instead serves the run as ``seatwin view RUN`` does (the Foxglove SDK's WebSocket server, looped at real
+time) and opens ``/?ds=foxglove-websocket&ds.url=ws://127.0.0.1:PORT&layoutUrl=…``.
 ``tests/report/test_foxglove_viewer.py`` runs the same steps and checks the page.
 """
 
