@@ -81,6 +81,7 @@ def _channels(mcap: Path) -> dict[str, tuple[str, int]]:
 
 def test_page_server_serves_byte_ranges(tmp_path: Path) -> None:
     """The viewer reads a remote MCAP by HTTP Range requests and refuses a server without Accept-Ranges."""
+    import urllib.error
     import urllib.request
 
     tool = _tool()
