@@ -1,5 +1,6 @@
-"""The README's picture of the Foxglove layout: seatwin's preview of docs/foxglove/seatwin-layout.json filled
-with a tracked run, screenshot by a real (headless) browser when one is installed."""
+"""seatwin's own picture of the Foxglove layout (docs/foxglove/layout-preview.png, linked from the README): its
+preview of docs/foxglove/seatwin-layout.json filled with a tracked run, screenshot by a real (headless) browser
+when one is installed. The layout in a real viewer: test_foxglove_viewer.py."""
 
 from __future__ import annotations
 
