@@ -345,6 +345,16 @@ def _drawn(png: bytes, panels: list[dict[str, Any]]) -> tuple[bool, Any]:
     return ok, px
 
 
+def _browser_for(dist: Path, browser: str | None) -> str:
+    """The browser to drive (``browser`` or the first Chromium on PATH), once ``dist`` is known to hold a web build."""
+    executable = browser or find_browser()
+    if executable is None:
+        raise FileNotFoundError("no Chromium-family browser on PATH")
+    if not (dist / "index.html").is_file():
+        raise FileNotFoundError(f"{dist}: no index.html (the viewer's web build)")
+    return executable
+
+
 def screenshot_run(
     dist: Path,
     run: Path,
@@ -361,11 +371,7 @@ def screenshot_run(
     seconds after its first message, and screenshot it once the panels are up, the player is ready, every panel
     has drawn and two screenshots a second apart agree. Before that, the viewer's Topics and Alerts lists are read
     (then its left sidebar closed, unless ``close_sidebar`` is False)."""
-    executable = browser or find_browser()
-    if executable is None:
-        raise FileNotFoundError("no Chromium-family browser on PATH")
-    if not (dist / "index.html").is_file():
-        raise FileNotFoundError(f"{dist}: no index.html (the viewer's web build)")
+    executable = _browser_for(dist, browser)
     mcap = run_mcap(run)
     at = None
     if at_s is not None:
@@ -395,11 +401,7 @@ def screenshot_live(
     (the page is live: no stillness is waited for)."""
     from seatwin.recording.view import RecordingViewer
 
-    executable = browser or find_browser()
-    if executable is None:
-        raise FileNotFoundError("no Chromium-family browser on PATH")
-    if not (dist / "index.html").is_file():
-        raise FileNotFoundError(f"{dist}: no index.html (the viewer's web build)")
+    executable = _browser_for(dist, browser)
     n_panels = len(_leaves(json.loads(layout.read_text())["layout"]))
     stop = threading.Event()
     with RecordingViewer(run, port=0) as viewer, serve(dist, {"/seatwin/seatwin-layout.json": layout}) as base:
