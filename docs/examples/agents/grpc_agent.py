@@ -85,7 +85,9 @@ def main(argv: list[str] | None = None) -> int:
     args = p.parse_args(argv)
     if not args.address:
         p.error("no address: give HOST:PORT or set SEATWIN_AGENT_ADDRESS")
-    channel = grpc.insecure_channel(args.address)
+    # reconnect within a second: waiting for the next simulation's server (--keep), gRPC's default backoff grows to 120 s
+    backoff = [(f"grpc.{k}_reconnect_backoff_ms", v) for k, v in (("initial", 100), ("min", 100), ("max", 1000))]
+    channel = grpc.insecure_channel(args.address, options=backoff)
     link = agent_link_pb2_grpc.AgentLinkStub(channel)
     gemini = force_control_pb2_grpc.ForceControlStub(channel)
     pb = agent_link_pb2
@@ -95,6 +97,9 @@ def main(argv: list[str] | None = None) -> int:
             try:
                 obs = link.Observe(pb.ObserveRequest(agent="grpc_agent"), wait_for_ready=True)
             except grpc.RpcError as exc:
+                if args.keep and exc.code() in (grpc.StatusCode.CANCELLED, grpc.StatusCode.UNAVAILABLE):
+                    time.sleep(0.2)  # the last simulation's server went away under this call: wait for the next one
+                    continue
                 print(f"grpc_agent: Observe failed: {exc.code().name}: {exc.details()}", file=sys.stderr)
                 return 1
         what, message, obs = obs.WhichOneof("what"), obs, None

@@ -120,16 +120,22 @@ def host_agent(agent: Agent, address: str, *, keep: bool = False) -> int:
     ``keep``: for ever, one simulation after another). Returns the steps answered."""
     import grpc
 
-    from seatwin.api.channel import GRPC_OPTIONS
+    from seatwin.api.channel import GRPC_OPTIONS, KEPT_AGENT_OPTIONS
 
     pb = agent_link_pb2
-    channel = grpc.insecure_channel(address, options=GRPC_OPTIONS)
+    channel = grpc.insecure_channel(address, options=GRPC_OPTIONS + KEPT_AGENT_OPTIONS)
     link = agent_link_pb2_grpc.AgentLinkStub(channel)
     answered, counts, obs = 0, {}, None
     try:
         while True:
             if obs is None:  # else Act brought it
-                obs = link.Observe(pb.ObserveRequest(agent=agent.name), wait_for_ready=True)
+                try:
+                    obs = link.Observe(pb.ObserveRequest(agent=agent.name), wait_for_ready=True)
+                except grpc.RpcError as exc:
+                    if keep and exc.code() in (grpc.StatusCode.CANCELLED, grpc.StatusCode.UNAVAILABLE):
+                        time.sleep(KEEP_PAUSE_S)  # the last simulation's server went away under this call
+                        continue
+                    raise
             what, message, obs = obs.WhichOneof("what"), obs, None
 
             if what == "finished":
