@@ -13,6 +13,8 @@ import pytest
 from seatwin.cli.main import run
 from seatwin.pipeline import evaluate_run, simulated_scenario, track_recording, tracking_summary, vessels_on_water
 
+pytestmark = pytest.mark.xdist_group("results_shown")  # later tests read the simulate test's run: one worker
+
 PNG = b"\x89PNG\r\n\x1a\n"
 
 
