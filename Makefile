@@ -5,8 +5,9 @@ PYTHON ?= python3
 VENV   := .venv
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed
-# Debian packages: Mesa EGL for headless rasterising, Chromium to check the HTML report.
-DEB_PACKAGES := libegl1 libgl1-mesa-dri libgl1 chromium
+# Debian packages: Mesa EGL for headless rasterising, Chromium to check the HTML report, ROS 1's own rosbag
+# (ros_comm, for /usr/bin/python3) to check that ROS reads seatwin's ROS 1 bags.
+DEB_PACKAGES := libegl1 libgl1-mesa-dri libgl1 chromium python3-rosbag
 
 .PHONY: demo test test-fast lint deb venv clean
 

@@ -1,4 +1,5 @@
-"""ROS 1 ``.bag`` (format 2.0): rosbags' ROS 1 writer, a large message written as a chunk of its own.
+"""ROS 1 ``.bag`` (format 2.0): rosbags' ROS 1 writer, a large message written as a chunk of its own, lz4 chunks
+in the frame layout ROS's ``roslz4`` reads.
 
 rosbags copies every message into the open chunk's ``BytesIO`` and the chunk again on its way
 to the file; for images (940 kB) and point clouds that costs milliseconds. Here a message of
@@ -21,10 +22,25 @@ from rosbags.rosbag1.writer import MAXSIZE, Header, WriteChunk, WriterError, ser
 from seatwin.recording.storage.base import BagStorage
 
 
+def roslz4_compress(data: bytes) -> bytes:
+    """An LZ4 frame as ROS 1's ``roslz4`` writes it and, alone, reads it: independent blocks of at most 1 MB, a
+    content checksum, no content size (frame descriptor ``0x64 0x60``). rosbags' default frame (linked blocks,
+    content size, no checksum) is refused by ROS's ``rosbag`` ("malformed data to decompress")."""
+    from lz4.frame import BLOCKSIZE_MAX1MB, compress
+
+    return compress(data, 0, block_size=BLOCKSIZE_MAX1MB, block_linked=False, content_checksum=True, store_size=False)
+
+
 class LeanRos1Writer(Writer):
-    """rosbags' ROS 1 ``Writer`` with direct writes of large messages."""
+    """rosbags' ROS 1 ``Writer`` with direct writes of large messages and lz4 chunks that ROS's own ``rosbag``
+    reads (:func:`roslz4_compress`)."""
 
     DIRECT_BYTES: int | None = 64 * 1024
+
+    def set_compression(self, fmt: Writer.CompressionFormat) -> None:
+        super().set_compression(fmt)
+        if self.compression_format == "lz4":
+            self.compressor = roslz4_compress
 
     def write(self, connection: Connection, timestamp: int, data: bytes | memoryview) -> None:
         if self.DIRECT_BYTES is None or len(data) < self.DIRECT_BYTES or self.compression_format != "none":
