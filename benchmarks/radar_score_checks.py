@@ -1,12 +1,14 @@
 """Issue 22's checks of the radar sensor score by simulation (docs/fidelity-score.md, *Evaluations of issue 22*).
 
-    .venv/bin/python benchmarks/radar_score_checks.py calibration [PAIRS] [SCANS] [WORKERS] [DRIFTING_PAIRS] [BUDGET_S.]
+    .venv/bin/python benchmarks/radar_score_checks.py calibration [PAIRS] [SCANS] [WORKERS] [DRIFTING_PAIRS] [BUDGET_S.] \
+        [SEED0] [DESIGN_OFF_TOO]
     .venv/bin/python benchmarks/radar_score_checks.py controlled [RECORDINGS] [SCANS] [WORKERS] [BUDGET_S.] [FIRST]
     .venv/bin/python benchmarks/radar_score_checks.py power [PAIRS] [SCANS] [WORKERS]
 
 * ``calibration`` (default 50 pairs of 238 scans): the coverage of every signed plot-level term's 95 % interval
   over pairs of recordings of one known model, as ``plot_terms_calibration.py`` measures it, plain and with a
-  drifting bearing offset (AR(1), φ 0.9, stationary σ 0.3°) — the autocorrelated case;
+  drifting bearing offset (AR(1), φ 0.9, stationary σ 0.3°) — the autocorrelated case; seeds from SEED0 (1000);
+  DESIGN_OFF_TOO 1: the plain pairs also with the detection terms' design-adjusted memory off;
 * ``controlled`` (default 40 recordings of 238 scans, indices from FIRST, default 0): parameters drawn at random
   per recording, the true model against 10 wrong ones ranked by the radar sensor score; how often the true model is
   first, and how often bearing bias +1°, σ_r × 2, σ_θ × 2 and Pd cap ∓ 0.2 are resolved;
@@ -22,6 +24,7 @@ import json
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -102,23 +105,34 @@ def _stop(pool: ProcessPoolExecutor) -> None:
 
 
 def calibration(
-    pairs: int = 50, scans: int = 238, workers: int = 2, drift_pairs: int | None = None, budget_s: float = 1e9
+    pairs: int = 50,
+    scans: int = 238,
+    workers: int = 2,
+    drift_pairs: int | None = None,
+    budget_s: float = 1e9,
+    seed0: int = 1000,
+    design_off_too: int = 0,
 ) -> dict[str, Any]:
-    """The coverage check; with ``budget_s``, only the recordings simulated within it (plain first) are used."""
+    """The coverage check on recordings seeded from ``seed0``; with ``budget_s``, only the recordings simulated within
+    it (plain first) are used; ``design_off_too``: the plain pairs also with the detection terms' design-adjusted
+    memory off (``plain_design_off``), on the same recordings."""
     t0 = time.perf_counter()
     opts = ScoreOptions(n_boot=400, seed=0)
-    seeds = range(1000, 1000 + 2 * pairs)
+    seeds = range(seed0, seed0 + 2 * pairs)
     n_drift = pairs if drift_pairs is None else drift_pairs
     jobs = [(KNOWN, scans, s) for s in seeds] + [(KNOWN, scans, s, Scene(), True) for s in seeds[: 2 * n_drift]]
     with ProcessPoolExecutor(workers) as pool:
         got = _collect(pool, _sample_args, jobs, budget_s, t0)
     plain, drift = got[: 2 * pairs], got[2 * pairs :]
     pairs, n_drift = len(plain) // 2, len(drift) // 2
-    out: dict[str, Any] = {"pairs": pairs, "drift_pairs": n_drift, "scans": scans, "n_boot": opts.n_boot}
-    for label, reps, n_pairs in (("plain", plain, pairs), ("drifting", drift, n_drift)):
+    out: dict[str, Any] = {"pairs": pairs, "drift_pairs": n_drift, "scans": scans, "n_boot": opts.n_boot, "seed0": seed0}
+    runs = [("plain", plain, pairs, opts), ("drifting", drift, n_drift, opts)]
+    if design_off_too:
+        runs.insert(1, ("plain_design_off", plain, pairs, replace(opts, design_memory=False)))
+    for label, reps, n_pairs, o in runs:
         if not n_pairs:
             continue
-        cov = _coverage(reps, n_pairs, opts)
+        cov = _coverage(reps, n_pairs, o)
         out[label] = cov
         print(f"{label}: {n_pairs} pairs of {scans}-scan recordings of one model; nominal 95 %")
         print(f"{'term':<22} {'pooled':>9} {'diff covers 0':>14} {'A covers pooled':>16} {'mean block':>11} {'pairs':>6}")
@@ -241,4 +255,4 @@ def power(pairs: int = 20, scans: int = 238, workers: int = 2) -> dict[str, Any]
 if __name__ == "__main__":
     what = sys.argv[1] if len(sys.argv) > 1 else "calibration"
     fn = {"calibration": calibration, "controlled": controlled, "power": power}[what]
-    fn(*(float(a) if "." in a else int(a) for a in sys.argv[2:8]))
+    fn(*(float(a) if "." in a else int(a) for a in sys.argv[2:9]))

@@ -177,10 +177,16 @@ def signed_term(
     options: ScoreOptions | None = None,
     directions: tuple[str, str] = ("high", "low"),
     scale: float = 1.0,
+    residuals: tuple[Sequence[ArrayLike], Sequence[ArrayLike]] | None = None,
 ) -> SignedTerm:
     """``statistic`` of each side's pooled finite values (a series per run, one value per scan in time order, NaN
     where the scan has none), times ``scale``, and their difference, each with its block-bootstrap percentile
-    interval (``options``: n_boot, level, seed, n_min). Refused when a side has fewer than ``n_min`` values."""
+    interval (``options``: n_boot, level, seed, n_min). Refused when a side has fewer than ``n_min`` values.
+
+    ``residuals`` (a mean only): (real, synthetic) series of the same shapes, the values less a pattern both sides
+    share (:func:`detection_memory`); the bootstrap then resamples them — their memory sets the block length and the
+    long-memory inflation, and a side's replicate is its mean plus the resampled residuals' mean less theirs — so the
+    shared pattern adds no spread. None: the values themselves."""
     o = options or ScoreOptions()
     rr = [np.asarray(r, float).reshape(-1) for r in real]
     ss = [np.asarray(s, float).reshape(-1) for s in synthetic]
@@ -189,23 +195,31 @@ def signed_term(
     if min(len(xr), len(xs)) < o.n_min:
         reason = f"fewer than {o.n_min} values ({len(xr)} real, {len(xs)} synthetic)"
         return SignedTerm(name, unit, None, None, None, directions=directions, reason=reason, counts=counts)
-    block = runs_block_length(rr + ss)
+    vr, vs = statistic(xr) * scale, statistic(xs) * scale
+    if residuals is None:
+        mr, ms = rr, ss
+    else:
+        mr, ms = ([np.asarray(m, float).reshape(-1) for m in side] for side in residuals)
+        offsets = (vr - _pooled(mr).mean() * scale, vs - _pooled(ms).mean() * scale)
+    block = runs_block_length(mr + ms)
     rng = frame_rng(o.seed, f"plot_terms/{name}", 0)
     reps = np.full((o.n_boot, 2), np.nan)
     means = np.full((o.n_boot, 2), np.nan)
     for b in range(o.n_boot):
-        br = _pooled(rr, [circular_block_indices(len(r), block, rng) for r in rr])
-        bs = _pooled(ss, [circular_block_indices(len(s), block, rng) for s in ss])
+        br = _pooled(mr, [circular_block_indices(len(r), block, rng) for r in mr])
+        bs = _pooled(ms, [circular_block_indices(len(s), block, rng) for s in ms])
         if min(len(br), len(bs)) >= 2:
-            reps[b] = statistic(br) * scale, statistic(bs) * scale
+            if residuals is None:
+                reps[b] = statistic(br) * scale, statistic(bs) * scale
+            else:
+                reps[b] = offsets[0] + br.mean() * scale, offsets[1] + bs.mean() * scale
             means[b] = br.mean(), bs.mean()
     if o.long_memory:  # widen each side's spread to its long-run variance (docs/fidelity-score.md, *Long memory*)
-        for j, side in enumerate((rr, ss)):
+        for j, side in enumerate((mr, ms)):
             f = long_memory_inflation(side, means[:, j], o.level)
             centre = float(np.nanmean(reps[:, j]))
             reps[:, j] = centre + f * (reps[:, j] - centre)
             counts[("memory_inflation_real", "memory_inflation_synthetic")[j]] = f
-    vr, vs = statistic(xr) * scale, statistic(xs) * scale
     diff = reps[:, 1] - reps[:, 0]
     return SignedTerm(
         name,
@@ -290,6 +304,25 @@ def _clutter_in(sample: RadarPlotSample, *, i: int, edges: tuple[float, ...]) ->
     return clutter_in_annuli(sample, edges)[:, i]
 
 
+def detection_memory(
+    samples: Sequence[RadarPlotSample], series: Sequence[NDArray[np.float64]], edges: Sequence[float] = PD_RANGE_EDGES_M
+) -> list[NDArray[np.float64]]:
+    """Each run's detection ``series`` (a term's 0/1 per scan, NaN where the term has none) less the detection share
+    of all the side's scans (``samples``, pooled) in the scan's range bin of ``edges``: the series whose memory a
+    detection term's interval takes (docs/fidelity-score.md, *Design-adjusted memory*). Where the target is —
+    beyond the radar's range for a spell, near it for another — is the trajectory's, which both sides share; it is
+    not memory, and adds no sampling spread to either side's share. Scans outside ``edges`` form a bin each side of
+    them."""
+    e = np.asarray(edges, float)
+    bins = [np.searchsorted(e, s.target_range, side="right") for s in samples]
+    b = np.concatenate(bins) if bins else np.empty(0, int)
+    d = np.concatenate([s.detected for s in samples]) if samples else np.empty(0)
+    share = np.zeros(len(e) + 1)
+    for k in np.unique(b):
+        share[k] = d[b == k].mean()
+    return [np.asarray(x, float) - share[k] for x, k in zip(series, bins, strict=True)]
+
+
 @dataclass(frozen=True)
 class TermSpec:
     """How one radar plot-level term is computed from a :class:`RadarPlotSample`."""
@@ -301,6 +334,8 @@ class TermSpec:
     statistic: Callable[[NDArray[np.float64]], float]
     directions: tuple[str, str] = ("high", "low")
     scale: float = 1.0
+    detection: bool = False
+    """A detection term (a mean of 0/1): its interval is the design-adjusted series' (:func:`detection_memory`)."""
 
 
 def radar_term_specs(area_km2: float, range_edges: Sequence[float] = PD_RANGE_EDGES_M) -> dict[str, TermSpec]:
@@ -322,12 +357,16 @@ def radar_term_specs(area_km2: float, range_edges: Sequence[float] = PD_RANGE_ED
         "range_sigma": TermSpec("range σ", "m", lambda s: s.range_error, clipped_sigma, ("wide", "narrow")),
     }
     lo_all, hi_all = float(range_edges[0]), float(range_edges[-1])
-    specs["pd_all"] = TermSpec(f"Pd {lo_all:.0f}–{hi_all:.0f} m (all)", "", partial(_in_bin, lo=lo_all, hi=hi_all), _mean)
+    specs["pd_all"] = TermSpec(
+        f"Pd {lo_all:.0f}–{hi_all:.0f} m (all)", "", partial(_in_bin, lo=lo_all, hi=hi_all), _mean, detection=True
+    )
     for lo, hi in zip(range_edges[:-1], range_edges[1:]):
-        specs[f"pd_{lo:.0f}_{hi:.0f}m"] = TermSpec(f"Pd {lo:.0f}–{hi:.0f} m", "", partial(_in_bin, lo=lo, hi=hi), _mean)
+        specs[f"pd_{lo:.0f}_{hi:.0f}m"] = TermSpec(
+            f"Pd {lo:.0f}–{hi:.0f} m", "", partial(_in_bin, lo=lo, hi=hi), _mean, detection=True
+        )
     for name, lo, hi in zip(ASPECT_NAMES, ASPECT_EDGES_DEG[:-1], ASPECT_EDGES_DEG[1:]):
         specs[f"pd_aspect_{name}"] = TermSpec(
-            f"Pd {name} aspect ({lo:.0f}–{hi:.0f}°)", "", partial(_in_aspect, lo=lo, hi=hi), _mean
+            f"Pd {name} aspect ({lo:.0f}–{hi:.0f}°)", "", partial(_in_aspect, lo=lo, hi=hi), _mean, detection=True
         )
     specs["clutter_per_scan"] = TermSpec("clutter per scan", "plots", clutter, _mean, ("dense", "sparse"))
     specs["clutter_per_km2"] = TermSpec("clutter density", "plots/km²/scan", clutter, _mean, ("dense", "sparse"), 1.0 / area_km2)
@@ -346,20 +385,17 @@ def radar_plot_terms(
     options: ScoreOptions | None = None,
     range_edges: Sequence[float] = PD_RANGE_EDGES_M,
 ) -> dict[str, SignedTerm]:
-    """Every radar plot-level term (:func:`radar_term_specs`) of real runs against synthetic runs (:func:`signed_term`)."""
-    return {
-        k: signed_term(
-            t.label,
-            t.unit,
-            [t.series(s) for s in real],
-            [t.series(s) for s in synthetic],
-            t.statistic,
-            options,
-            t.directions,
-            t.scale,
-        )
-        for k, t in radar_term_specs(area_km2, range_edges).items()
-    }
+    """Every radar plot-level term (:func:`radar_term_specs`) of real runs against synthetic runs (:func:`signed_term`);
+    the detection terms' memory design-adjusted (:func:`detection_memory`) unless ``options.design_memory`` is off."""
+    o = options or ScoreOptions()
+    out = {}
+    for k, t in radar_term_specs(area_km2, range_edges).items():
+        r, s = [t.series(x) for x in real], [t.series(x) for x in synthetic]
+        residuals = None
+        if t.detection and o.design_memory:
+            residuals = (detection_memory(real, r, range_edges), detection_memory(synthetic, s, range_edges))
+        out[k] = signed_term(t.label, t.unit, r, s, t.statistic, o, t.directions, t.scale, residuals)
+    return out
 
 
 @dataclass

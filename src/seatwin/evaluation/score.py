@@ -87,6 +87,11 @@ class ScoreOptions:
     integrated autocorrelation time when that is larger, with a Student-t factor on the effective number of values
     (:func:`seatwin.evaluation.bootstrap.long_memory_inflation`; docs/fidelity-score.md, *Long memory*). False: the
     block bootstrap alone."""
+    design_memory: bool = True
+    """Radar detection terms: their block length and long-memory inflation from the detections less the side's
+    detection share in the scan's range bin — the range pattern a trajectory imposes is not memory
+    (:func:`seatwin.evaluation.plot_terms.detection_memory`; docs/fidelity-score.md, *Design-adjusted memory*).
+    False: from the detections themselves."""
     clutter_gate: float = 25.0
     """A plot or confirmed track farther than this [m] from every target is clutter or a false track
     (vessels are up to ~30 m long; a radar's plots scatter further: the joyride method uses 60 m)."""
