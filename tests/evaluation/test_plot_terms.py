@@ -13,6 +13,7 @@ from seatwin.evaluation.plot_terms import (
     RADAR_SENSOR_WEIGHTS,
     RadarPlotSample,
     clutter_in_annuli,
+    detection_memory,
     gaussian_hellinger_1d,
     radar_plot_sample,
     radar_plot_terms,
@@ -264,3 +265,43 @@ def test_radar_sensor_score_ranks_and_leads():
         assert got.resolved and got.ci[0] <= got.value <= got.ci[1], k
     assert not sensor_lead(real, wrong["bias"], same, o).resolved
     assert radar_sensor_score(real, same, o).to_dict() == s_true.to_dict()  # reproducible
+
+
+def _detections(ranges: np.ndarray, detected: np.ndarray) -> RadarPlotSample:
+    err = np.where(detected > 0, 0.5, np.nan)
+    return RadarPlotSample(ranges, err, err, np.zeros(len(ranges), dtype=np.int64))
+
+
+def test_detection_memory_hand_computed():
+    # bins of PD_RANGE_EDGES_M: 0–250 m, 250–500 m, beyond 2500 m (a bin of its own)
+    a = _detections(np.array([100.0, 100.0, 300.0, 3000.0]), np.array([1.0, 0.0, 1.0, 0.0]))
+    b = _detections(np.array([200.0, 400.0]), np.array([1.0, 0.0]))
+    series = [np.array([1.0, 0.0, 1.0, np.nan]), np.array([1.0, np.nan])]
+    got = detection_memory([a, b], series)
+    # side shares: 0–250 m 2/3 (three scans, two detected), 250–500 m 1/2, beyond 2500 m 0
+    assert got[0][:3] == pytest.approx([1 / 3, -2 / 3, 1 / 2])
+    assert np.isnan(got[0][3]) and np.isnan(got[1][1])
+    assert got[1][0] == pytest.approx(1 / 3)
+
+
+def _orbit_like(seed: int, n: int = 600) -> RadarPlotSample:
+    """A target that spends long spells beyond the radar's range (Pd 0 there by design), Pd 0.8 within it."""
+    rng = np.random.default_rng(seed)
+    ranges = np.where((np.arange(n) // 100) % 2 == 0, 600.0, 1200.0)
+    detected = np.where(ranges < 1000.0, rng.random(n) < 0.8, False).astype(float)
+    return _detections(ranges, detected)
+
+
+def test_design_adjusted_detection_terms_spread_as_the_detections_do():
+    real, synth = [_orbit_like(1)], [_orbit_like(2), _orbit_like(3)]
+    on = radar_plot_terms(real, synth, 1.0, ScoreOptions(n_boot=300, seed=0))
+    off = radar_plot_terms(real, synth, 1.0, ScoreOptions(n_boot=300, seed=0, design_memory=False))
+    sd_on = float(np.std(on["pd_all"].difference_replicates))
+    sd_off = float(np.std(off["pd_all"].difference_replicates))
+    # given where the target was, the shares' difference has the binomial SD of the 300 + 600 in-range scans
+    ideal = float(np.sqrt(0.8 * 0.2 * (1 / 300 + 1 / 600)) * 300 / 600)  # the share is over all 600 / 1200 scans
+    assert sd_on == pytest.approx(ideal, rel=0.35)
+    assert sd_off > 3 * sd_on
+    assert on["pd_all"].real == off["pd_all"].real and on["pd_all"].synthetic == off["pd_all"].synthetic
+    for k in ("bearing_bias", "range_sigma", "clutter_per_scan"):  # not detection terms: unchanged to the bit
+        assert np.array_equal(on[k].difference_replicates, off[k].difference_replicates, equal_nan=True)
