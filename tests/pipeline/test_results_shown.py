@@ -3,7 +3,9 @@ on request, a figure; the numbers are the library's (:func:`tracking_summary`, :
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
+import io
 import re
 from pathlib import Path
 
@@ -13,24 +15,35 @@ import pytest
 from seatwin.cli.main import run
 from seatwin.pipeline import evaluate_run, simulated_scenario, track_recording, tracking_summary, vessels_on_water
 
-pytestmark = pytest.mark.xdist_group("results_shown")  # later tests read the simulate test's run: one worker
+pytestmark = pytest.mark.xdist_group("results_shown")  # one worker: the module's run is simulated once
 
 PNG = b"\x89PNG\r\n\x1a\n"
 
 
+@dataclasses.dataclass(frozen=True)
+class Simulated:
+    folder: Path
+    run: Path
+    figure: Path
+    printed: str
+
+
 @pytest.fixture(scope="module")
-def ferry(tmp_path_factory) -> Path:
-    """The module's folder: the simulate test records 8 s of ferry_crossing's lidar there (from 25 s in, both targets
-    25–70 m away), and the track tests track that run."""
+def ferry(tmp_path_factory) -> Simulated:
+    """``seatwin simulate`` of 8 s of ferry_crossing's lidar (from 25 s in, both targets 25–70 m away) with a figure,
+    once for the module (its printout kept): the simulate test checks it, the track tests track that run, whichever
+    worker and order they run in."""
     d = tmp_path_factory.mktemp("shown")
-    return d
-
-
-def test_simulate_prints_water_and_draws_the_window(ferry, capsys):
-    out, fig = ferry / "run", ferry / "run.png"
+    out, fig = d / "run", d / "run.png"
     argv = ["simulate", "ferry_crossing", "--out", str(out), "--offset", "25", "--duration", "8", "--sensors", "lidar"]
-    assert run([*argv, "--no-progress", "--figure", str(fig)]) == 0
-    text = capsys.readouterr().out
+    printed = io.StringIO()
+    with contextlib.redirect_stdout(printed):
+        assert run([*argv, "--no-progress", "--figure", str(fig)]) == 0
+    return Simulated(d, out, fig, printed.getvalue())
+
+
+def test_simulate_prints_water_and_draws_the_window(ferry):
+    out, fig, text = ferry.run, ferry.figure, ferry.printed
     assert "frames: ground truth 80, lidar 80" in text
     assert "on water: Havfruen 100 %, Finn 100 %, milliAmpere 100 %" in text
     assert f"wrote {fig}" in text and fig.read_bytes().startswith(PNG)
@@ -51,10 +64,8 @@ def test_simulate_refuses_a_figure_it_could_not_write_before_any_work(tmp_path, 
 
 
 def test_track_prints_coverage_false_tracks_on_land_and_draws(ferry, capsys):
-    run_dir = ferry / "run"
-    if not run_dir.exists():
-        pytest.skip("needs the simulate test's run (run the module)")
-    tracks, fig = ferry / "tracks.csv", ferry / "tracks.png"
+    run_dir = ferry.run
+    tracks, fig = ferry.folder / "tracks.csv", ferry.folder / "tracks.png"
     argv = ["track", str(run_dir), "--sensors", "lidar", "--tuning", "synthetic", "--out", str(tracks), "--no-progress"]
     assert run([*argv, "--figure", str(fig)]) == 0
     text = capsys.readouterr().out
@@ -75,9 +86,7 @@ def test_track_prints_coverage_false_tracks_on_land_and_draws(ferry, capsys):
 def test_summary_without_truth_or_mask_says_so_and_counts_tracks_on_land(ferry):
     from seatwin.cli.track import summary_lines
 
-    run_dir = ferry / "run"
-    if not run_dir.exists():
-        pytest.skip("needs the simulate test's run (run the module)")
+    run_dir = ferry.run
     result = track_recording(run_dir, sensors=("lidar",), tuning="synthetic")
     bare = tracking_summary(dataclasses.replace(result, truth=None, water=None))
     assert (bare.false_tracks, bare.on_land, bare.coverage) == (None, None, {})
