@@ -273,15 +273,16 @@ def _detections(ranges: np.ndarray, detected: np.ndarray) -> RadarPlotSample:
 
 
 def test_detection_memory_hand_computed():
-    # bins of PD_RANGE_EDGES_M: 0–250 m, 250–500 m, beyond 2500 m (a bin of its own)
     a = _detections(np.array([100.0, 100.0, 300.0, 3000.0]), np.array([1.0, 0.0, 1.0, 0.0]))
     b = _detections(np.array([200.0, 400.0]), np.array([1.0, 0.0]))
     series = [np.array([1.0, 0.0, 1.0, np.nan]), np.array([1.0, np.nan])]
     got = detection_memory([a, b], series)
-    # side shares: 0–250 m 2/3 (three scans, two detected), 250–500 m 1/2, beyond 2500 m 0
-    assert got[0][:3] == pytest.approx([1 / 3, -2 / 3, 1 / 2])
+    # N = 6 scans, round(√6) = 2 equal-count bins cut at the median range 250 m: {100, 100, 200} detected 2 of 3,
+    # {300, 400, 3000} 1 of 3; residuals times √(6 / (6 − 2))
+    f = np.sqrt(6 / 4)
+    assert got[0][:3] == pytest.approx([f / 3, -2 * f / 3, 2 * f / 3])
     assert np.isnan(got[0][3]) and np.isnan(got[1][1])
-    assert got[1][0] == pytest.approx(1 / 3)
+    assert got[1][0] == pytest.approx(f / 3)
 
 
 def _orbit_like(seed: int, n: int = 600) -> RadarPlotSample:

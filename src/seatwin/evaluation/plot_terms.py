@@ -16,6 +16,7 @@ difference excludes 0.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field
 from functools import partial
@@ -304,23 +305,24 @@ def _clutter_in(sample: RadarPlotSample, *, i: int, edges: tuple[float, ...]) ->
     return clutter_in_annuli(sample, edges)[:, i]
 
 
-def detection_memory(
-    samples: Sequence[RadarPlotSample], series: Sequence[NDArray[np.float64]], edges: Sequence[float] = PD_RANGE_EDGES_M
-) -> list[NDArray[np.float64]]:
+def detection_memory(samples: Sequence[RadarPlotSample], series: Sequence[NDArray[np.float64]]) -> list[NDArray[np.float64]]:
     """Each run's detection ``series`` (a term's 0/1 per scan, NaN where the term has none) less the detection share
-    of all the side's scans (``samples``, pooled) in the scan's range bin of ``edges``: the series whose memory a
-    detection term's interval takes (docs/fidelity-score.md, *Design-adjusted memory*). Where the target is —
-    beyond the radar's range for a spell, near it for another — is the trajectory's, which both sides share; it is
-    not memory, and adds no sampling spread to either side's share. Scans outside ``edges`` form a bin each side of
-    them."""
-    e = np.asarray(edges, float)
-    bins = [np.searchsorted(e, s.target_range, side="right") for s in samples]
-    b = np.concatenate(bins) if bins else np.empty(0, int)
+    of the side's scans (``samples``, pooled) in the scan's range bin, times √(N / (N − B)): the series whose memory
+    and spread a detection term's interval takes (docs/fidelity-score.md, *Design-adjusted memory*, second version).
+    The bins hold equal numbers of the side's N scans, B = round(√N) of them; the factor gives back the degrees of
+    freedom the B shares take. Where the target is — beyond the radar's range for a spell, near its minimum range for
+    another — is the trajectory's, which both sides share: it is not memory, and adds no sampling spread."""
+    ranges = np.concatenate([s.target_range for s in samples]) if samples else np.empty(0)
     d = np.concatenate([s.detected for s in samples]) if samples else np.empty(0)
-    share = np.zeros(len(e) + 1)
-    for k in np.unique(b):
-        share[k] = d[b == k].mean()
-    return [np.asarray(x, float) - share[k] for x, k in zip(series, bins, strict=True)]
+    n = len(ranges)
+    n_bins = max(1, round(math.sqrt(n)))
+    cuts = np.quantile(ranges, np.linspace(0.0, 1.0, n_bins + 1)[1:-1]) if n else np.empty(0)
+    bins = [np.searchsorted(cuts, s.target_range, side="right") for s in samples]
+    b = np.concatenate(bins) if bins else np.empty(0, int)
+    counts = np.bincount(b, minlength=n_bins)
+    share = np.bincount(b, weights=d, minlength=n_bins) / np.maximum(counts, 1)
+    dof = math.sqrt(n / (n - n_bins)) if n > n_bins else 1.0
+    return [(np.asarray(x, float) - share[k]) * dof for x, k in zip(series, bins, strict=True)]
 
 
 @dataclass(frozen=True)
@@ -393,7 +395,7 @@ def radar_plot_terms(
         r, s = [t.series(x) for x in real], [t.series(x) for x in synthetic]
         residuals = None
         if t.detection and o.design_memory:
-            residuals = (detection_memory(real, r, range_edges), detection_memory(synthetic, s, range_edges))
+            residuals = (detection_memory(real, r), detection_memory(synthetic, s))
         out[k] = signed_term(t.label, t.unit, r, s, t.statistic, o, t.directions, t.scale, residuals)
     return out
 
