@@ -312,9 +312,13 @@ class ViewerShot:
     waited_s: float = 0.0
 
 
-def viewer_url(base: str, at: str | None) -> str:
-    """The deep link that opens the served MCAP with the served layout (at POSIX time ``at``, if given)."""
-    url = f"{base}/?ds=remote-file&ds.url={quote(base + '/seatwin/run.mcap', safe='')}"
+def viewer_url(base: str, at: str | None = None, websocket: str | None = None) -> str:
+    """The deep link that opens the served MCAP (at POSIX time ``at``, if given) — or, with ``websocket``, that
+    Foxglove WebSocket server — with the served layout."""
+    if websocket is None:
+        url = f"{base}/?ds=remote-file&ds.url={quote(base + '/seatwin/run.mcap', safe='')}"
+    else:
+        url = f"{base}/?ds=foxglove-websocket&ds.url={quote(websocket, safe='')}"
     url += f"&layoutUrl={quote(base + '/seatwin/seatwin-layout.json', safe='')}"
     if at is not None:
         url += f"&time={quote(at, safe='')}"
@@ -345,14 +349,15 @@ def _drawn(png: bytes, panels: list[dict[str, Any]]) -> tuple[bool, Any]:
     return ok, px
 
 
-def _browser_for(dist: Path, browser: str | None) -> str:
-    """The browser to drive (``browser`` or the first Chromium on PATH), once ``dist`` is known to hold a web build."""
+def _prepared(dist: Path, browser: str | None, layout: Path) -> tuple[str, int]:
+    """The browser to drive (``browser`` or the first Chromium on PATH), once ``dist`` is known to hold a web build,
+    and the number of panels ``layout`` opens."""
     executable = browser or find_browser()
     if executable is None:
         raise FileNotFoundError("no Chromium-family browser on PATH")
     if not (dist / "index.html").is_file():
         raise FileNotFoundError(f"{dist}: no index.html (the viewer's web build)")
-    return executable
+    return executable, len(_leaves(json.loads(layout.read_text())["layout"]))
 
 
 def screenshot_run(
@@ -371,14 +376,13 @@ def screenshot_run(
     seconds after its first message, and screenshot it once the panels are up, the player is ready, every panel
     has drawn and two screenshots a second apart agree. Before that, the viewer's Topics and Alerts lists are read
     (then its left sidebar closed, unless ``close_sidebar`` is False)."""
-    executable = _browser_for(dist, browser)
+    executable, n_panels = _prepared(dist, browser, layout)
     mcap = run_mcap(run)
     at = None
     if at_s is not None:
         ns = mcap_start_ns(mcap) + round(at_s * 1e9)
         at = f"{ns // 1_000_000_000}.{ns % 1_000_000_000:09d}"
     extra = {"/seatwin/run.mcap": mcap, "/seatwin/seatwin-layout.json": layout}
-    n_panels = len(_leaves(json.loads(layout.read_text())["layout"]))
     with serve(dist, extra) as base:
         url = viewer_url(base, at)
         return _shoot(executable, url, n_panels, width, height, live=False, close_sidebar=close_sidebar, timeout_s=timeout_s)
@@ -401,8 +405,7 @@ def screenshot_live(
     (the page is live: no stillness is waited for)."""
     from seatwin.recording.view import RecordingViewer
 
-    executable = _browser_for(dist, browser)
-    n_panels = len(_leaves(json.loads(layout.read_text())["layout"]))
+    executable, n_panels = _prepared(dist, browser, layout)
     stop = threading.Event()
     with RecordingViewer(run, port=0) as viewer, serve(dist, {"/seatwin/seatwin-layout.json": layout}) as base:
         port = viewer.start()
@@ -415,8 +418,7 @@ def screenshot_live(
             viewer.close()
 
         try:
-            url = f"{base}/?ds=foxglove-websocket&ds.url={quote(f'ws://127.0.0.1:{port}', safe='')}"
-            url += f"&layoutUrl={quote(base + '/seatwin/seatwin-layout.json', safe='')}"
+            url = viewer_url(base, websocket=f"ws://127.0.0.1:{port}")
             return _shoot(
                 executable, url, n_panels, width, height, live=True, close_sidebar=close_sidebar, timeout_s=timeout_s,
                 before_close=stop_serving,

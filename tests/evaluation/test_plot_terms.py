@@ -13,7 +13,7 @@ from seatwin.evaluation.plot_terms import (
     RADAR_SENSOR_WEIGHTS,
     RadarPlotSample,
     clutter_in_annuli,
-    detection_memory,
+    detection_design,
     gaussian_hellinger_1d,
     radar_plot_sample,
     radar_plot_terms,
@@ -272,11 +272,11 @@ def _detections(ranges: np.ndarray, detected: np.ndarray) -> RadarPlotSample:
     return RadarPlotSample(ranges, err, err, np.zeros(len(ranges), dtype=np.int64))
 
 
-def test_detection_memory_hand_computed():
+def test_detection_design_hand_computed():
     a = _detections(np.array([100.0, 100.0, 300.0, 3000.0]), np.array([1.0, 0.0, 1.0, 0.0]))
     b = _detections(np.array([200.0, 400.0]), np.array([1.0, 0.0]))
     series = [np.array([1.0, 0.0, 1.0, np.nan]), np.array([1.0, np.nan])]
-    got = detection_memory([a, b], series)
+    got = detection_design([a, b]).residuals(series)
     # N = 6 scans, round(√6) = 2 equal-count bins cut at the median range 250 m: {100, 100, 200} detected 2 of 3,
     # {300, 400, 3000} 1 of 3; residuals times √(6 / (6 − 2))
     f = np.sqrt(6 / 4)

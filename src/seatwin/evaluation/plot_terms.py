@@ -185,7 +185,7 @@ def signed_term(
     interval (``options``: n_boot, level, seed, n_min). Refused when a side has fewer than ``n_min`` values.
 
     ``residuals`` (a mean only): (real, synthetic) series of the same shapes, the values less a pattern both sides
-    share (:func:`detection_memory`); the bootstrap then resamples them — their memory sets the block length and the
+    share (:meth:`DetectionDesign.residuals`); the bootstrap then resamples them — their memory sets the block length and the
     long-memory inflation, and a side's replicate is its mean plus the resampled residuals' mean less theirs — so the
     shared pattern adds no spread. None: the values themselves."""
     o = options or ScoreOptions()
@@ -305,13 +305,26 @@ def _clutter_in(sample: RadarPlotSample, *, i: int, edges: tuple[float, ...]) ->
     return clutter_in_annuli(sample, edges)[:, i]
 
 
-def detection_memory(samples: Sequence[RadarPlotSample], series: Sequence[NDArray[np.float64]]) -> list[NDArray[np.float64]]:
-    """Each run's detection ``series`` (a term's 0/1 per scan, NaN where the term has none) less the detection share
-    of the side's scans (``samples``, pooled) in the scan's range bin, times √(N / (N − B)): the series whose memory
-    and spread a detection term's interval takes (docs/fidelity-score.md, *Design-adjusted memory*, second version).
-    The bins hold equal numbers of the side's N scans, B = round(√N) of them; the factor gives back the degrees of
-    freedom the B shares take. Where the target is — beyond the radar's range for a spell, near its minimum range for
-    another — is the trajectory's, which both sides share: it is not memory, and adds no sampling spread."""
+@dataclass(frozen=True)
+class DetectionDesign:
+    """What where the target was says of one side's detections: per run, each scan's expected detection — the side's
+    detection share (its ``samples`` pooled) in the scan's range bin — and the factor √(N / (N − B)) that gives back
+    the degrees of freedom the B shares take (docs/fidelity-score.md, *Design-adjusted memory*, second version). The
+    bins hold equal numbers of the side's N scans, B = round(√N) of them. Where the target is — beyond the radar's
+    range for a spell, near its minimum range for another — is the trajectory's, which both sides share: it is not
+    memory, and adds no sampling spread."""
+
+    expected: list[NDArray[np.float64]]
+    dof: float
+
+    def residuals(self, series: Sequence[NDArray[np.float64]]) -> list[NDArray[np.float64]]:
+        """Each run's detection ``series`` (a term's 0/1 per scan, NaN where the term has none) less its expected
+        detections, times :attr:`dof`: the series whose memory and spread a detection term's interval takes."""
+        return [(np.asarray(x, float) - e) * self.dof for x, e in zip(series, self.expected, strict=True)]
+
+
+def detection_design(samples: Sequence[RadarPlotSample]) -> DetectionDesign:
+    """The :class:`DetectionDesign` of one side's runs."""
     ranges = np.concatenate([s.target_range for s in samples]) if samples else np.empty(0)
     d = np.concatenate([s.detected for s in samples]) if samples else np.empty(0)
     n = len(ranges)
@@ -319,10 +332,9 @@ def detection_memory(samples: Sequence[RadarPlotSample], series: Sequence[NDArra
     cuts = np.quantile(ranges, np.linspace(0.0, 1.0, n_bins + 1)[1:-1]) if n else np.empty(0)
     bins = [np.searchsorted(cuts, s.target_range, side="right") for s in samples]
     b = np.concatenate(bins) if bins else np.empty(0, int)
-    counts = np.bincount(b, minlength=n_bins)
-    share = np.bincount(b, weights=d, minlength=n_bins) / np.maximum(counts, 1)
+    share = np.bincount(b, weights=d, minlength=n_bins) / np.maximum(np.bincount(b, minlength=n_bins), 1)
     dof = math.sqrt(n / (n - n_bins)) if n > n_bins else 1.0
-    return [(np.asarray(x, float) - share[k]) * dof for x, k in zip(series, bins, strict=True)]
+    return DetectionDesign([share[k] for k in bins], dof)
 
 
 @dataclass(frozen=True)
@@ -337,7 +349,7 @@ class TermSpec:
     directions: tuple[str, str] = ("high", "low")
     scale: float = 1.0
     detection: bool = False
-    """A detection term (a mean of 0/1): its interval is the design-adjusted series' (:func:`detection_memory`)."""
+    """A detection term (a mean of 0/1): its interval is the design-adjusted series' (:class:`DetectionDesign`)."""
 
 
 def radar_term_specs(area_km2: float, range_edges: Sequence[float] = PD_RANGE_EDGES_M) -> dict[str, TermSpec]:
@@ -388,14 +400,16 @@ def radar_plot_terms(
     range_edges: Sequence[float] = PD_RANGE_EDGES_M,
 ) -> dict[str, SignedTerm]:
     """Every radar plot-level term (:func:`radar_term_specs`) of real runs against synthetic runs (:func:`signed_term`);
-    the detection terms' memory design-adjusted (:func:`detection_memory`) unless ``options.design_memory`` is off."""
+    the detection terms' memory design-adjusted (:class:`DetectionDesign`, once per side) unless
+    ``options.design_memory`` is off."""
     o = options or ScoreOptions()
+    designs = (detection_design(real), detection_design(synthetic)) if o.design_memory else None
     out = {}
     for k, t in radar_term_specs(area_km2, range_edges).items():
         r, s = [t.series(x) for x in real], [t.series(x) for x in synthetic]
         residuals = None
-        if t.detection and o.design_memory:
-            residuals = (detection_memory(real, r), detection_memory(synthetic, s))
+        if t.detection and designs is not None:
+            residuals = (designs[0].residuals(r), designs[1].residuals(s))
         out[k] = signed_term(t.label, t.unit, r, s, t.statistic, o, t.directions, t.scale, residuals)
     return out
 

@@ -90,7 +90,7 @@ class ScoreOptions:
     design_memory: bool = True
     """Radar detection terms: their block length and long-memory inflation from the detections less the side's
     detection share in the scan's range bin — the range pattern a trajectory imposes is not memory
-    (:func:`seatwin.evaluation.plot_terms.detection_memory`; docs/fidelity-score.md, *Design-adjusted memory*).
+    (:func:`seatwin.evaluation.plot_terms.DetectionDesign`; docs/fidelity-score.md, *Design-adjusted memory*).
     False: from the detections themselves."""
     clutter_gate: float = 25.0
     """A plot or confirmed track farther than this [m] from every target is clutter or a false track
