@@ -54,10 +54,62 @@ def test_sky_above_sea_below_and_vessel_ids(setup: tuple) -> None:
     assert sc.ownship.name not in [scene.objects[i].name for i in np.unique(f.ids) if i >= 0]
 
 
-def test_gl_objects_are_freed_with_their_renderer() -> None:
-    from seatwin.render import create_context
+def _one_frame(r: SceneRenderer, sc, scene, cfg):
+    t = sc.start + 40.0
+    p = scene.pose(sc.ownship.name, t)
+    m = {x.name: x for x in rig_mounts(cfg)}["right"]
+    return r.render(t, *m.world_pose(float(p.north), float(p.east), float(p.heading)))
 
-    assert create_context().gc_mode == "auto"
+
+def _on_a_new_thread(fn):  # noqa: ANN001, ANN202
+    """``fn()`` on a thread of its own, so with an EGL context of its own (one per thread)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(1) as pool:
+        return pool.submit(fn).result()
+
+
+def test_gl_objects_are_freed_with_their_renderer(setup: tuple) -> None:
+    import gc
+
+    from seatwin.render import release_collected
+
+    sc, scene, cfg, info, _ = setup
+
+    def build_drop_and_release() -> tuple[int, int]:
+        r = SceneRenderer(scene, info.k, 64, 48, exclude=[sc.ownship.name])
+        ctx, r.self_cycle = r.ctx, r  # only the collector can free it
+        del r
+        gc.collect()
+        return release_collected(ctx), release_collected(ctx)
+
+    first, second = _on_a_new_thread(build_drop_and_release)
+    assert first > 10 and second == 0  # programs, buffers, vertex arrays, textures, framebuffers; then none
+
+
+def test_garbage_collected_on_another_thread_leaves_its_gl_objects_alone(setup: tuple) -> None:
+    """Regression (CI, 2026-11-26): a renderer collected by Python on a gRPC worker thread released its
+    GL objects in *that* thread's context, deleting the worker renderer's same-numbered buffers (zero ids)."""
+    import gc
+
+    sc, scene, cfg, info, reference = setup
+    expected = _one_frame(reference, sc, scene, cfg)
+
+    def build() -> SceneRenderer:
+        return SceneRenderer(scene, info.k, cfg.width, cfg.height, exclude=[sc.ownship.name])
+
+    dropped = _on_a_new_thread(build)  # a fresh context: its object numbers match the next one's
+    dropped.self_cycle = dropped
+    del dropped
+
+    def build_collect_render():  # noqa: ANN202
+        r = build()
+        gc.collect()  # the other thread's garbage, collected here
+        return _one_frame(r, sc, scene, cfg)
+
+    got = _on_a_new_thread(build_collect_render)
+    np.testing.assert_array_equal(got.ids, expected.ids)
+    np.testing.assert_array_equal(got.bgr, expected.bgr)
 
 
 def test_rendering_is_deterministic(setup: tuple) -> None:

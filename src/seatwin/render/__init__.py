@@ -5,7 +5,7 @@ poses) with sky, sun-lit sea and a 24-bit depth buffer; :func:`create_context` g
 naming the Debian packages when EGL or GL is missing. See ``docs/architecture/camera.md``.
 """
 
-from seatwin.render.context import DEBIAN_PACKAGES, create_context, renderer_name
+from seatwin.render.context import DEBIAN_PACKAGES, create_context, release_collected, renderer_name
 from seatwin.render.renderer import RenderedFrame, SceneRenderer, projection_matrix, sun_direction
 
 __all__ = [
@@ -14,6 +14,7 @@ __all__ = [
     "SceneRenderer",
     "create_context",
     "projection_matrix",
+    "release_collected",
     "renderer_name",
     "sun_direction",
 ]

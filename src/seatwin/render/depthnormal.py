@@ -26,7 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from seatwin.errors import InputError
-from seatwin.render.context import create_context
+from seatwin.render.context import create_context, release_collected
 from seatwin.render.renderer import SceneRenderer, _flat_vertices
 
 _VS = """
@@ -130,6 +130,7 @@ class DepthNormalRenderer:
         self.scene, self.width, self.height = scene, int(width), int(height)
         self.exclude = set(exclude)
         self.ctx = ctx if ctx is not None else create_context()
+        release_collected(self.ctx)
         limit = int(self.ctx.info.get("GL_MAX_TEXTURE_SIZE", 16384))
         if max(self.width, self.height) > limit:
             raise InputError("depth buffer", f"{self.width}×{self.height} exceeds the GL limit of {limit} pixels per side")
@@ -211,6 +212,7 @@ class DepthNormalRenderer:
         import moderngl
 
         ctx = self.ctx
+        release_collected(ctx)
         self.fbo.use()
         ctx.viewport = (0, 0, self.width, self.height)
         ctx.enable(moderngl.DEPTH_TEST)

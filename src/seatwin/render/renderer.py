@@ -29,7 +29,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from seatwin.errors import InputError
 from seatwin.geo import yaw_matrix
-from seatwin.render.context import create_context
+from seatwin.render.context import create_context, release_collected
 from seatwin.render.materials import object_colour
 
 _MESH_VS = """
@@ -239,6 +239,7 @@ class SceneRenderer:
         self.near, self.far = float(near), float(far)
         self.exclude = set(exclude)
         self.ctx = ctx if ctx is not None else create_context()
+        release_collected(self.ctx)
         self.timing = RenderTiming()
         ctx = self.ctx
         self.proj = projection_matrix(self.k, self.width, self.height, self.near, self.far)
@@ -353,6 +354,7 @@ class SceneRenderer:
         import moderngl
 
         ctx = self.ctx
+        release_collected(ctx)
         t0 = _time.perf_counter()
         r = np.asarray(rotation, float)
         c = np.asarray(position, float)
