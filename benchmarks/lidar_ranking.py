@@ -7,6 +7,9 @@ docs/fidelity-score.md before the runs). Also: against all candidates, by S7 (li
 S7, and per lidar term how often each wrong model is resolved, and in which direction.
 
     .venv/bin/python benchmarks/lidar_ranking.py --seeds 1 2 3 --workers 2 --out /tmp/lidar_ranking.json
+
+``--pool K`` pools K independent runs a side (K× the data; evaluation 8 of docs/fidelity-score.md): the
+candidates at seeds ``100·s + j`` and the real side at ``100·s + 1000 + j``, j = 0..K−1.
 """
 
 from __future__ import annotations
@@ -29,20 +32,27 @@ REAL_OFFSET = 1000
 CRITERION = ("depthbuffer-legacy", "range_noise_0.1")
 
 
-def score_case(case: tuple[str, int], duration: float, cache: str, models: tuple[str, ...]) -> dict[str, Any]:
-    """Every candidate's S5, S7 and S5 without S7 against the case's real run, and its lidar terms."""
+def pool_seeds(seed: int, pool: int) -> list[int]:
+    """The candidates' seeds of case ``seed`` (the real side's: each + ``REAL_OFFSET``): ``[seed]`` for one run a
+    side, else ``100·seed + j`` for j < ``pool``."""
+    return [seed] if pool == 1 else [100 * seed + j for j in range(pool)]
+
+
+def score_case(case: tuple[str, int], duration: float, cache: str, models: tuple[str, ...], pool: int = 1) -> dict[str, Any]:
+    """Every candidate's S5, S7 and S5 without S7 against the case's real runs, and its lidar terms."""
     from seatwin.evaluation.lidar_terms import lidar_terms, run_lidar_samples
     from seatwin.evaluation.score import overall_score
 
     scenario, seed = case
-    (real,) = load_runs([(scenario, "default", seed + REAL_OFFSET)], duration, cache)
-    out: dict[str, Any] = {"scenario": scenario, "seed": seed, "models": {}}
+    seeds = pool_seeds(seed, pool)
+    real = load_runs([(scenario, "default", k + REAL_OFFSET) for k in seeds], duration, cache)
+    out: dict[str, Any] = {"scenario": scenario, "seed": seed, "pool": pool, "models": {}}
     for model in models:
-        (cand,) = load_runs([(scenario, model, seed)], duration, cache)
-        f = score_pair([real], [cand])
+        cand = load_runs([(scenario, model, k) for k in seeds], duration, cache)
+        f = score_pair(real, cand)
         without = overall_score(f.targets, {k: v for k, v in f.plots.items() if k != "lidar_returns"})
-        rs = run_lidar_samples([real["tracks"]], real["truth"])
-        cs = run_lidar_samples([cand["tracks"]], real["truth"])
+        rs = run_lidar_samples([r["tracks"] for r in real], real[0]["truth"])
+        cs = run_lidar_samples([c["tracks"] for c in cand], real[0]["truth"])
         terms = {} if rs is None or cs is None else lidar_terms(rs, cs)
         out["models"][model] = {
             "S5": f.overall.value,
@@ -78,17 +88,19 @@ def main() -> None:
     ap.add_argument("--seeds", nargs="*", type=int, default=[1, 2, 3])
     ap.add_argument("--duration", type=float, default=60.0)
     ap.add_argument("--models", nargs="*", default=list(MODELS), choices=list(MODELS))
+    ap.add_argument("--pool", type=int, default=1, help="independent runs pooled a side (K× the data)")
     ap.add_argument("--workers", type=int, default=1)
     ap.add_argument("--cache", default="/tmp/seatwin-lidarbench")
     ap.add_argument("--out", default=None)
     a = ap.parse_args()
     t0 = time.perf_counter()
-    jobs = [(sc, "default", s + REAL_OFFSET) for sc in a.scenarios for s in a.seeds]
-    jobs += [(sc, m, s) for sc in a.scenarios for s in a.seeds for m in a.models]
+    seeds = {s: pool_seeds(s, a.pool) for s in a.seeds}
+    jobs = [(sc, "default", k + REAL_OFFSET) for sc in a.scenarios for s in a.seeds for k in seeds[s]]
+    jobs += [(sc, m, k) for sc in a.scenarios for s in a.seeds for m in a.models for k in seeds[s]]
     ensure_runs(jobs, a.duration, a.cache, a.workers)
     t1 = time.perf_counter()
     cases = parallel_map(
-        partial(score_case, duration=a.duration, cache=a.cache, models=tuple(a.models)),
+        partial(score_case, duration=a.duration, cache=a.cache, models=tuple(a.models), pool=a.pool),
         [(sc, s) for sc in a.scenarios for s in a.seeds],
         a.workers,
     )
