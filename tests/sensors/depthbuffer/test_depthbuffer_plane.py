@@ -162,6 +162,43 @@ def test_plane_model_follows_moving_vessels_and_sensor(gl: None) -> None:
     assert vessels.sum() > 50 and np.percentile(err[vessels[same]], 99) <= 0.01
 
 
+def test_cached_renderers_stay_on_their_own_thread(gl: None) -> None:
+    """Regression: the depth renderers' cache was process-wide, so a thread that filled it up released another
+    thread's renderers in its own GL context — deleting its own objects of the same numbers (here: a camera's)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from seatwin.render import SceneRenderer
+    from seatwin.scenario.builtin import builtin_scenario
+    from seatwin.sensors.camera import CameraConfig, camera_info_fields, rig_mounts
+    from seatwin.sensors.depthbuffer.plane_range import plane_ranges
+    from seatwin.sensors.lidar import lidar_for_scenario
+    from seatwin.sensors.lidar_config import VLP16
+    from seatwin.world.scene import Scene
+
+    sc = builtin_scenario("ferry_crossing")
+    scenes = [Scene.from_scenario(sc) for _ in range(3)]
+    t = sc.start + 35.0
+    batch = lidar_for_scenario(sc, scenes[0], VLP16.with_(columns=360, drop_probability=0.0)).beams(t, 0)
+    cfg = CameraConfig()
+
+    def camera_frame(r: SceneRenderer) -> bytes:
+        p = scenes[0].pose(sc.ownship.name, t)
+        m = rig_mounts(cfg)[0]
+        return r.render(t, *m.world_pose(float(p.north), float(p.east), float(p.heading))).bgr.tobytes()
+
+    with ThreadPoolExecutor(1) as camera_thread, ThreadPoolExecutor(1) as lidar_thread:
+        info = camera_info_fields(cfg)
+        camera = camera_thread.submit(
+            lambda: SceneRenderer(scenes[0], info.k, cfg.width, cfg.height, exclude=[sc.ownship.name])
+        ).result()
+        before = camera_thread.submit(camera_frame, camera).result()
+        ranges = [lidar_thread.submit(plane_ranges, s, batch).result().range for s in scenes[:2]]  # the cache is full
+        camera_thread.submit(plane_ranges, scenes[2], batch).result()
+        assert camera_thread.submit(camera_frame, camera).result() == before
+        again = lidar_thread.submit(plane_ranges, scenes[0], batch).result().range
+        np.testing.assert_array_equal(again, ranges[0])
+
+
 def test_registered_and_wired() -> None:
     from typing import get_args
 

@@ -23,6 +23,7 @@ The beams' camera comes from the lidar's integer column grid, as in the ``depthb
 
 from __future__ import annotations
 
+import threading
 from dataclasses import dataclass
 
 import numpy as np
@@ -52,20 +53,23 @@ class PlaneRanges(DepthBufferRanges):
     fallback: NDArray[np.bool_] | None = None
 
 
-_RENDERERS: dict[tuple, tuple[Scene, DepthNormalRenderer]] = {}
+_CACHE = threading.local()
+"""Each thread's renderers: a GL object lives in the context of the thread that made it (one per thread), and
+must be drawn with and released on that thread."""
 
 
 def renderer_for(scene: Scene, cam: DepthCamera, exclude: tuple[str, ...] = ()) -> DepthNormalRenderer:
-    """The renderer of ``scene`` at ``cam``'s size (cached: meshes are uploaded once per scene)."""
+    """The renderer of ``scene`` at ``cam``'s size (cached per thread: meshes are uploaded once per scene)."""
+    renderers: dict[tuple, tuple[Scene, DepthNormalRenderer]] = _CACHE.__dict__.setdefault("renderers", {})
     key = (id(scene), cam.n_cw, cam.n_ch, tuple(sorted(exclude)))
-    hit = _RENDERERS.get(key)
+    hit = renderers.get(key)
     if hit is None or hit[0] is not scene:
-        if len(_RENDERERS) >= 2:
-            for _, r in _RENDERERS.values():
+        if len(renderers) >= 2:
+            for _, r in renderers.values():
                 r.release()
-            _RENDERERS.clear()
+            renderers.clear()
         hit = (scene, DepthNormalRenderer(scene, cam.n_cw, cam.n_ch, exclude=exclude))
-        _RENDERERS[key] = hit
+        renderers[key] = hit
     return hit[1]
 
 
