@@ -1,14 +1,15 @@
 """Issue 22's checks of the radar sensor score by simulation (docs/fidelity-score.md, *Evaluations of issue 22*).
 
     .venv/bin/python benchmarks/radar_score_checks.py calibration [PAIRS] [SCANS] [WORKERS] [DRIFTING_PAIRS] [BUDGET_S.] \
-        [SEED0] [DESIGN_OFF_TOO]
+        [SEED0] [DESIGN_OFF_TOO] [PD_DRIFT]
     .venv/bin/python benchmarks/radar_score_checks.py controlled [RECORDINGS] [SCANS] [WORKERS] [BUDGET_S.] [FIRST]
     .venv/bin/python benchmarks/radar_score_checks.py power [PAIRS] [SCANS] [WORKERS]
 
 * ``calibration`` (default 50 pairs of 238 scans): the coverage of every signed plot-level term's 95 % interval
   over pairs of recordings of one known model, as ``plot_terms_calibration.py`` measures it, plain and with a
   drifting bearing offset (AR(1), φ 0.9, stationary σ 0.3°) — the autocorrelated case; seeds from SEED0 (1000);
-  DESIGN_OFF_TOO 1: the plain pairs also with the detection terms' design-adjusted memory off;
+  DESIGN_OFF_TOO 1: the plain pairs also with the detection terms' design-adjusted memory off; PD_DRIFT 1: the
+  plain recordings' Pd drifts in time (``PD_DRIFT``);
 * ``controlled`` (default 40 recordings of 238 scans, indices from FIRST, default 0): parameters drawn at random
   per recording, the true model against 10 wrong ones ranked by the radar sensor score; how often the true model is
   first, and how often bearing bias +1°, σ_r × 2, σ_θ × 2 and Pd cap ∓ 0.2 are resolved;
@@ -42,6 +43,8 @@ KNOWN = RadarConfig(
 )
 """The known model of the calibration and power checks (plot_terms_calibration.py's)."""
 AREA_KM2 = float(np.pi * (KNOWN.max_range_m**2 - KNOWN.min_range_m**2) / 1e6)
+PD_DRIFT = (0.98, 0.3)
+"""Evaluation 10's Pd drift: AR(1) φ 0.98 (≈ 50-scan spells), detections kept with a factor in [0.7, 1]."""
 Z_POWER = 1.959964 + 0.841621
 """z of a two-sided 95 % test plus z of 80 % power."""
 
@@ -112,15 +115,18 @@ def calibration(
     budget_s: float = 1e9,
     seed0: int = 1000,
     design_off_too: int = 0,
+    pd_drift: int = 0,
 ) -> dict[str, Any]:
     """The coverage check on recordings seeded from ``seed0``; with ``budget_s``, only the recordings simulated within
     it (plain first) are used; ``design_off_too``: the plain pairs also with the detection terms' design-adjusted
-    memory off (``plain_design_off``), on the same recordings."""
+    memory off (``plain_design_off``), on the same recordings; ``pd_drift``: the "plain" recordings' Pd drifts in
+    time (``orbit_sample(pd_drift=PD_DRIFT)``; fidelity-score.md, evaluation 10)."""
     t0 = time.perf_counter()
     opts = ScoreOptions(n_boot=400, seed=0)
     seeds = range(seed0, seed0 + 2 * pairs)
     n_drift = pairs if drift_pairs is None else drift_pairs
-    jobs = [(KNOWN, scans, s) for s in seeds] + [(KNOWN, scans, s, Scene(), True) for s in seeds[: 2 * n_drift]]
+    plain_drift = (Scene(), False, PD_DRIFT) if pd_drift else ()
+    jobs = [(KNOWN, scans, s, *plain_drift) for s in seeds] + [(KNOWN, scans, s, Scene(), True) for s in seeds[: 2 * n_drift]]
     with ProcessPoolExecutor(workers) as pool:
         got = _collect(pool, _sample_args, jobs, budget_s, t0)
     plain, drift = got[: 2 * pairs], got[2 * pairs :]
@@ -255,4 +261,4 @@ def power(pairs: int = 20, scans: int = 238, workers: int = 2) -> dict[str, Any]
 if __name__ == "__main__":
     what = sys.argv[1] if len(sys.argv) > 1 else "calibration"
     fn = {"calibration": calibration, "controlled": controlled, "power": power}[what]
-    fn(*(float(a) if "." in a else int(a) for a in sys.argv[2:9]))
+    fn(*(float(a) if "." in a else int(a) for a in sys.argv[2:10]))

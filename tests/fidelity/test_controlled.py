@@ -14,6 +14,7 @@ from seatwin.fidelity.controlled import (
     draw_controlled,
     drift_offsets,
     orbit_sample,
+    pd_drift_factors,
 )
 
 
@@ -43,6 +44,22 @@ def test_drift_turns_the_plots_by_the_offsets():
         (turned.bearing_error - plain.bearing_error)[both], drift_offsets(40, 5 + 7_000_000)[both], atol=1e-6
     )
     np.testing.assert_allclose(turned.range_error[both], plain.range_error[both], atol=1e-6)
+
+
+def test_pd_drift_drops_target_detections_only_with_the_drifting_factor():
+    q = pd_drift_factors(20000, 2, 0.98, 0.3)
+    assert q.min() >= 0.7 and q.max() <= 1.0 and q.mean() == pytest.approx(0.85, abs=0.02)
+    assert np.corrcoef(q[:-1], q[1:])[0, 1] > 0.95  # slow: spells of tens of scans
+    cfg, scene = draw_controlled(3)
+    plain = orbit_sample(cfg, 400, 5, scene)
+    thinned = orbit_sample(cfg, 400, 5, scene, pd_drift=(0.98, 0.3))
+    kept = np.isfinite(thinned.range_error)
+    assert not (kept & ~np.isfinite(plain.range_error)).any()  # nothing detected that was not
+    np.testing.assert_array_equal(thinned.range_error[kept], plain.range_error[kept])
+    np.testing.assert_array_equal(thinned.clutter, plain.clutter)
+    lost = np.isfinite(plain.range_error) & ~kept
+    assert 0.05 < lost.sum() / np.isfinite(plain.range_error).sum() < 0.3  # ≈ 1 − mean factor
+    assert orbit_sample(cfg, 400, 5, scene, pd_drift=(0.98, 0.3)).range_error.tobytes() == thinned.range_error.tobytes()
 
 
 @pytest.mark.slow

@@ -70,17 +70,39 @@ def drift_offsets(n: int, seed: int, phi: float = 0.9, sigma: float = 0.3) -> ND
     return x
 
 
+def pd_drift_factors(n: int, seed: int, phi: float = 0.98, depth: float = 0.3) -> NDArray[np.float64]:
+    """``n`` slowly drifting detection factors in [1 − ``depth``, 1]: 1 − depth·(1 + tanh z)/2 for an AR(1) z
+    (coefficient ``phi``, stationary σ 1), seeded."""
+    return 1.0 - depth * (1.0 + np.tanh(drift_offsets(n, seed, phi, 1.0))) / 2.0
+
+
 def orbit_sample(
-    config: RadarConfig, scans: int, seed: int, scene: Scene = Scene(), drift: bool | tuple[float, float] = False
+    config: RadarConfig,
+    scans: int,
+    seed: int,
+    scene: Scene = Scene(),
+    drift: bool | tuple[float, float] = False,
+    pd_drift: tuple[float, float] | None = None,
 ) -> RadarPlotSample:
     """The plot sample of one orbit recording by radar ``config``; with ``drift``, every scan's plots turned about the
     antenna by an AR(1) bearing offset (:func:`drift_offsets`, seed ``seed + 7 000 000``; ``True``: φ 0.9, σ 0.3°;
-    a pair: (φ, σ [deg]))."""
+    a pair: (φ, σ [deg])); with ``pd_drift`` = (φ, depth), the target's detection (the plot nearest it within the
+    clutter gate) kept in scan k with probability :func:`pd_drift_factors`\ [k] (seed ``seed + 8 000 000``): a Pd
+    that drifts in time, not with range."""
     data = orbit_dataset(
         config, n=scans, seed=seed, radius=scene.radius, centre_east=scene.centre_east, speed=scene.speed, phase=scene.phase
     )
     antenna = antenna_positions(data, config)
     plots = data.plots
+    if pd_drift is not None:
+        keep = pd_drift_factors(scans, seed + 8_000_000, *pd_drift)
+        draw = np.random.default_rng(seed + 9_000_000).random(scans)
+        tgt = truth_of(data)[TARGET].state_at(np.asarray(data.time, float))[:, [0, 2]]
+        plots = [np.asarray(p, float).reshape(-1, 2) for p in plots]
+        for k, p in enumerate(plots):
+            d = np.hypot(p[:, 0] - tgt[k, 0], p[:, 1] - tgt[k, 1])
+            if len(p) and d.min() <= RADAR_CLUTTER_GATE_M and draw[k] > keep[k]:
+                plots[k] = np.delete(p, int(np.argmin(d)), axis=0)
     if drift:
         phi, sigma = (0.9, 0.3) if drift is True else drift
         off = np.radians(drift_offsets(scans, seed + 7_000_000, phi, sigma))
