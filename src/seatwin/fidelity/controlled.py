@@ -87,7 +87,7 @@ def orbit_sample(
     """The plot sample of one orbit recording by radar ``config``; with ``drift``, every scan's plots turned about the
     antenna by an AR(1) bearing offset (:func:`drift_offsets`, seed ``seed + 7 000 000``; ``True``: φ 0.9, σ 0.3°;
     a pair: (φ, σ [deg])); with ``pd_drift`` = (φ, depth), the target's detection (the plot nearest it within the
-    clutter gate) kept in scan k with probability :func:`pd_drift_factors`\ [k] (seed ``seed + 8 000 000``): a Pd
+    clutter gate) kept in scan k with probability ``pd_drift_factors(…)[k]`` (seed ``seed + 8 000 000``): a Pd
     that drifts in time, not with range."""
     data = orbit_dataset(
         config, n=scans, seed=seed, radius=scene.radius, centre_east=scene.centre_east, speed=scene.speed, phase=scene.phase
