@@ -1,7 +1,7 @@
 """Issue 22's checks of the radar sensor score by simulation (docs/fidelity-score.md, *Evaluations of issue 22*).
 
     .venv/bin/python benchmarks/radar_score_checks.py calibration [PAIRS] [SCANS] [WORKERS] [DRIFTING_PAIRS] [BUDGET_S.] \
-        [SEED0] [DESIGN_OFF_TOO] [PD_DRIFT]
+        [SEED0] [DESIGN_OFF_TOO] [PD_DRIFT] [BATCH_FLOOR_TOO]
     .venv/bin/python benchmarks/radar_score_checks.py controlled [RECORDINGS] [SCANS] [WORKERS] [BUDGET_S.] [FIRST]
     .venv/bin/python benchmarks/radar_score_checks.py power [PAIRS] [SCANS] [WORKERS]
 
@@ -9,7 +9,8 @@
   over pairs of recordings of one known model, as ``plot_terms_calibration.py`` measures it, plain and with a
   drifting bearing offset (AR(1), φ 0.9, stationary σ 0.3°) — the autocorrelated case; seeds from SEED0 (1000);
   DESIGN_OFF_TOO 1: the plain pairs also with the detection terms' design-adjusted memory off; PD_DRIFT 1: the
-  plain recordings' Pd drifts in time (``PD_DRIFT``);
+  plain recordings' Pd drifts in time (``PD_DRIFT``); BATCH_FLOOR_TOO 1: the plain pairs also with the detection
+  terms' batch-means floor on;
 * ``controlled`` (default 40 recordings of 238 scans, indices from FIRST, default 0): parameters drawn at random
   per recording, the true model against 10 wrong ones ranked by the radar sensor score; how often the true model is
   first, and how often bearing bias +1°, σ_r × 2, σ_θ × 2 and Pd cap ∓ 0.2 are resolved;
@@ -116,11 +117,13 @@ def calibration(
     seed0: int = 1000,
     design_off_too: int = 0,
     pd_drift: int = 0,
+    batch_floor_too: int = 0,
 ) -> dict[str, Any]:
     """The coverage check on recordings seeded from ``seed0``; with ``budget_s``, only the recordings simulated within
     it (plain first) are used; ``design_off_too``: the plain pairs also with the detection terms' design-adjusted
     memory off (``plain_design_off``), on the same recordings; ``pd_drift``: the "plain" recordings' Pd drifts in
-    time (``orbit_sample(pd_drift=PD_DRIFT)``; fidelity-score.md, evaluation 10)."""
+    time (``orbit_sample(pd_drift=PD_DRIFT)``; fidelity-score.md, evaluation 10); ``batch_floor_too``: the plain
+    pairs also with the detection terms' batch-means floor on (``plain_batch_floor``; evaluation 11)."""
     t0 = time.perf_counter()
     opts = ScoreOptions(n_boot=400, seed=0)
     seeds = range(seed0, seed0 + 2 * pairs)
@@ -135,6 +138,8 @@ def calibration(
     runs = [("plain", plain, pairs, opts), ("drifting", drift, n_drift, opts)]
     if design_off_too:
         runs.insert(1, ("plain_design_off", plain, pairs, replace(opts, design_memory=False)))
+    if batch_floor_too:
+        runs.insert(1, ("plain_batch_floor", plain, pairs, replace(opts, batch_floor=True)))
     for label, reps, n_pairs, o in runs:
         if not n_pairs:
             continue
@@ -261,4 +266,4 @@ def power(pairs: int = 20, scans: int = 238, workers: int = 2) -> dict[str, Any]
 if __name__ == "__main__":
     what = sys.argv[1] if len(sys.argv) > 1 else "calibration"
     fn = {"calibration": calibration, "controlled": controlled, "power": power}[what]
-    fn(*(float(a) if "." in a else int(a) for a in sys.argv[2:10]))
+    fn(*(float(a) if "." in a else int(a) for a in sys.argv[2:11]))

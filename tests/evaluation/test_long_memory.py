@@ -79,3 +79,42 @@ def test_long_memory_rule_restores_the_coverage_of_a_mean_under_drift():
             held[memory] += t.real_ci[0] <= 0.0 <= t.real_ci[1]
             assert (t.counts["memory_inflation_real"] >= 1.0) if memory else ("memory_inflation_real" not in t.counts)
     assert held[True] >= 34 and held[True] > held[False], held
+
+
+def test_batch_means_inflation_hand_computed():
+    from scipy.stats import norm, t
+
+    from seatwin.evaluation.bootstrap import batch_means_inflation
+
+    x = [0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, np.nan]  # 4 batches of 2: means 0, 0, 1, 1 → V_bm = (1/3) / 4
+    boot = np.array([0.0, 0.5]) * np.sqrt(2 / 48) / 0.5  # variance 1/48 (ddof 1) → r = 4
+    assert float(np.var(boot, ddof=1)) == pytest.approx(1 / 48)
+    assert batch_means_inflation([x], boot) == pytest.approx(2.0 * t.ppf(0.975, 3) / norm.ppf(0.975))
+    assert batch_means_inflation([x[:4], x[4:]], boot) == batch_means_inflation([x], boot)  # runs one after another
+    assert batch_means_inflation([x], boot * 3.0) == 1.0  # r = 4/9 ≤ 1: the bootstrap stands
+    assert batch_means_inflation([x[:7]], boot) == 1.0  # fewer than 2 values a batch
+    assert batch_means_inflation([x], np.ones(5)) == 1.0  # no bootstrap spread
+
+
+def test_batch_floor_widens_drifting_detections_only_and_is_off_by_default():
+    from seatwin.evaluation.plot_terms import RadarPlotSample, radar_plot_terms
+
+    rng = np.random.default_rng(4)
+
+    def drifting(n: int = 240) -> object:  # Pd 0.85 ± 0.15 over one slow period; ranges unrelated to time
+        pd = 0.85 + 0.15 * np.sin(2 * np.pi * np.arange(n) / n)
+        err = np.where(rng.random(n) < pd, 0.5, np.nan)  # a plot 0.5 m / 0.5° off where detected
+        return RadarPlotSample(rng.uniform(300.0, 900.0, n), err, err, np.zeros(n, dtype=np.int64))
+
+    real, synth = [drifting()], [drifting(), drifting()]
+    base = ScoreOptions(n_boot=300, seed=0)
+    off = radar_plot_terms(real, synth, 1.0, base)
+    on = radar_plot_terms(real, synth, 1.0, ScoreOptions(n_boot=300, seed=0, batch_floor=True))
+    assert ScoreOptions().batch_floor is False
+    assert on["pd_all"].real == off["pd_all"].real  # the values stay; only the spread may grow
+    assert np.std(on["pd_all"].difference_replicates) >= np.std(off["pd_all"].difference_replicates)
+    key = "memory_inflation_synthetic"  # two runs: here the autocorrelation time misses the drift
+    grew = on["pd_all"].counts[key] / off["pd_all"].counts[key]
+    assert grew > 1.5  # the batch means see a drift too weak per lag for the autocorrelation time
+    for k in ("bearing_bias", "range_sigma", "clutter_per_scan"):  # not detection terms: unchanged to the bit
+        assert np.array_equal(on[k].difference_replicates, off[k].difference_replicates, equal_nan=True)

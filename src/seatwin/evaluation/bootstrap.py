@@ -168,3 +168,30 @@ def long_memory_inflation(runs: Sequence[ArrayLike], boot_means: ArrayLike, leve
     q = (1.0 + level) / 2.0
     nu = max(1.0, len(x) / tau - 1.0)
     return float(np.sqrt(max(1.0, ratio)) * t.ppf(q, nu) / norm.ppf(q))
+
+
+BATCHES = 4
+"""Batches of :func:`batch_means_inflation` (docs/fidelity-score.md, *Batch-means floor*)."""
+
+
+def batch_means_inflation(runs: Sequence[ArrayLike], boot_means: ArrayLike, level: float = 0.95, batches: int = BATCHES) -> float:
+    """The factor by which to widen a bootstrap spread of a pooled mean when batch means vary more than it allows:
+    ``√r · t_{b−1} / z`` if ``r = V_bm / V_boot > 1``, else 1; ``V_bm`` the variance of the ``batches`` contiguous
+    equal-count batches' means (the runs' finite values one after another) over ``batches``, ``V_boot`` that of
+    ``boot_means``. Catches slow drifts too weak per lag for an autocorrelation time to see. 1 with fewer than
+    ``2·batches`` values or no bootstrap spread."""
+    from scipy.stats import norm, t
+
+    parts = [np.asarray(r, float).reshape(-1) for r in runs]
+    x = np.concatenate(parts) if parts else np.empty(0)
+    x = x[np.isfinite(x)]
+    bm = np.asarray(boot_means, float)
+    bm = bm[np.isfinite(bm)]
+    if len(x) < 2 * batches or len(bm) < 2 or float(np.var(bm, ddof=1)) <= 0.0:
+        return 1.0
+    means = np.array([c.mean() for c in np.array_split(x, batches)])
+    ratio = float(np.var(means, ddof=1)) / batches / float(np.var(bm, ddof=1))
+    if ratio <= 1.0:
+        return 1.0
+    q = (1.0 + level) / 2.0
+    return float(np.sqrt(ratio) * t.ppf(q, batches - 1) / norm.ppf(q))

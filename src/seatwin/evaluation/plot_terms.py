@@ -24,7 +24,13 @@ from functools import partial
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from seatwin.evaluation.bootstrap import circular_block_indices, long_memory_inflation, percentile_interval, runs_block_length
+from seatwin.evaluation.bootstrap import (
+    batch_means_inflation,
+    circular_block_indices,
+    long_memory_inflation,
+    percentile_interval,
+    runs_block_length,
+)
 from seatwin.evaluation.score import ScoreOptions, ScoreValue, clutter_mask, with_ci
 from seatwin.evaluation.truth import TruthSet
 from seatwin.rng import frame_rng
@@ -218,6 +224,8 @@ def signed_term(
     if o.long_memory:  # widen each side's spread to its long-run variance (docs/fidelity-score.md, *Long memory*)
         for j, side in enumerate((mr, ms)):
             f = long_memory_inflation(side, means[:, j], o.level)
+            if o.batch_floor and residuals is not None:
+                f = max(f, batch_means_inflation(side, means[:, j], o.level))
             centre = float(np.nanmean(reps[:, j]))
             reps[:, j] = centre + f * (reps[:, j] - centre)
             counts[("memory_inflation_real", "memory_inflation_synthetic")[j]] = f

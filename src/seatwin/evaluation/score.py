@@ -92,6 +92,11 @@ class ScoreOptions:
     detection share in the scan's range bin — the range pattern a trajectory imposes is not memory
     (:func:`seatwin.evaluation.plot_terms.DetectionDesign`; docs/fidelity-score.md, *Design-adjusted memory*).
     False: from the detections themselves."""
+    batch_floor: bool = False
+    """Radar detection terms (with ``design_memory``): widen each side's spread to at least what 4 batch means give
+    (:func:`seatwin.evaluation.bootstrap.batch_means_inflation`; docs/fidelity-score.md, *Batch-means floor*) — for a
+    Pd that drifts in slow spells. Off by default: it costs the Pd terms power, and the controlled check has not
+    been re-run with it."""
     clutter_gate: float = 25.0
     """A plot or confirmed track farther than this [m] from every target is clutter or a false track
     (vessels are up to ~30 m long; a radar's plots scatter further: the joyride method uses 60 m)."""
