@@ -2,7 +2,8 @@
 
     .venv/bin/python benchmarks/radar_score_checks.py calibration [PAIRS] [SCANS] [WORKERS] [DRIFTING_PAIRS] [BUDGET_S.] \
         [SEED0] [DESIGN_OFF_TOO] [PD_DRIFT] [BATCH_FLOOR_TOO]
-    .venv/bin/python benchmarks/radar_score_checks.py controlled [RECORDINGS] [SCANS] [WORKERS] [BUDGET_S.] [FIRST]
+    .venv/bin/python benchmarks/radar_score_checks.py controlled [RECORDINGS] [SCANS] [WORKERS] [BUDGET_S.] [FIRST] \
+        [BATCH_FLOOR]
     .venv/bin/python benchmarks/radar_score_checks.py power [PAIRS] [SCANS] [WORKERS]
 
 * ``calibration`` (default 50 pairs of 238 scans): the coverage of every signed plot-level term's 95 % interval
@@ -13,7 +14,8 @@
   terms' batch-means floor on;
 * ``controlled`` (default 40 recordings of 238 scans, indices from FIRST, default 0): parameters drawn at random
   per recording, the true model against 10 wrong ones ranked by the radar sensor score; how often the true model is
-  first, and how often bearing bias +1°, σ_r × 2, σ_θ × 2 and Pd cap ∓ 0.2 are resolved;
+  first, and how often bearing bias +1°, σ_r × 2, σ_θ × 2 and Pd cap ∓ 0.2 are resolved; BATCH_FLOOR 1: with the
+  detection terms' batch-means floor (``ScoreOptions.batch_floor``);
 * ``power`` (default 20 pairs at 1×, 2×, 4× of 238 scans): the minimum detectable difference per term.
 
 Each prints a table and, on its last line, its figures as JSON. Radar-only (no tracker): a recording is the
@@ -160,13 +162,17 @@ def calibration(
 # --- controlled ranking and resolution ---------------------------------------------------------------------------
 
 
-def controlled(recordings: int = 40, scans: int = 238, workers: int = 2, budget_s: float = 1e9, first: int = 0) -> dict[str, Any]:
+def controlled(
+    recordings: int = 40, scans: int = 238, workers: int = 2, budget_s: float = 1e9, first: int = 0, batch_floor: int = 0
+) -> dict[str, Any]:
     """The controlled check of recordings ``first`` … ``first + recordings − 1``; with ``budget_s``, only the
-    recordings done within it (in index order) count."""
+    recordings done within it (in index order) count; ``batch_floor``: with the detection terms' batch-means floor."""
     t0 = time.perf_counter()
     rows = []
     with ProcessPoolExecutor(workers) as pool:
-        futures = [pool.submit(controlled_recording, i, scans) for i in range(first, first + recordings)]
+        futures = [
+            pool.submit(controlled_recording, i, scans, 200, None, bool(batch_floor)) for i in range(first, first + recordings)
+        ]
         for f in futures:
             left = budget_s - (time.perf_counter() - t0)
             if left <= 0:

@@ -171,16 +171,21 @@ def _disjoint(a: tuple[float, float] | None, b: tuple[float, float] | None) -> b
 
 
 def controlled_recording(
-    index: int, scans: int = 238, n_boot: int = 200, models: dict[str, RadarConfig] | None = None
+    index: int,
+    scans: int = 238,
+    n_boot: int = 200,
+    models: dict[str, RadarConfig] | None = None,
+    batch_floor: bool = False,
 ) -> dict[str, Any]:
     """Controlled recording ``index`` (:func:`draw_controlled`, ``scans`` scans): the real recording and
     :data:`SYNTHETIC_SEEDS` per candidate (``models``, default :func:`candidate_models`), ranked by the radar sensor
     score; for each wrong model of :data:`RESOLVE` present: whether its matching term's interval is disjoint from the
     true model's (``term_disjoint``), whether their sensor scores' intervals are (``score_disjoint``) and whether the
-    true model's :func:`~seatwin.evaluation.plot_terms.sensor_lead` over it is resolved (``lead_resolved``)."""
+    true model's :func:`~seatwin.evaluation.plot_terms.sensor_lead` over it is resolved (``lead_resolved``);
+    ``batch_floor``: :attr:`ScoreOptions.batch_floor`."""
     true, scene = draw_controlled(index)
     cands = candidate_models(true) if models is None else models
-    opts = ScoreOptions(n_boot=n_boot, seed=index)
+    opts = ScoreOptions(n_boot=n_boot, seed=index, batch_floor=batch_floor)
     base = 100_000 * (index + 1)
     real = [orbit_sample(true, scans, base, scene)]
     samples = {
