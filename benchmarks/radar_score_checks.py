@@ -171,7 +171,7 @@ def controlled(
     rows = []
     with ProcessPoolExecutor(workers) as pool:
         futures = [
-            pool.submit(controlled_recording, i, scans, 200, None, bool(batch_floor)) for i in range(first, first + recordings)
+            pool.submit(controlled_recording, i, scans, batch_floor=bool(batch_floor)) for i in range(first, first + recordings)
         ]
         for f in futures:
             left = budget_s - (time.perf_counter() - t0)

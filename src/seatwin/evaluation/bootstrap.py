@@ -147,6 +147,18 @@ def runs_autocorrelation_time(runs: Sequence[ArrayLike]) -> float:
     return float(sum(k * integrated_autocorrelation_time(r) for k, r in zip(n, runs)) / sum(n))
 
 
+def _values_and_boot_variance(
+    runs: Sequence[ArrayLike], boot_means: ArrayLike
+) -> tuple[list[NDArray[np.float64]], NDArray[np.float64], float]:
+    """The runs as flat arrays, their finite values one run after another, and the variance (ddof 1) of the finite
+    ``boot_means`` (0 with fewer than 2): what both inflation factors compare."""
+    parts = [np.asarray(r, float).reshape(-1) for r in runs]
+    x = np.concatenate(parts) if parts else np.empty(0)
+    bm = np.asarray(boot_means, float)
+    bm = bm[np.isfinite(bm)]
+    return parts, x[np.isfinite(x)], float(np.var(bm, ddof=1)) if len(bm) >= 2 else 0.0
+
+
 def long_memory_inflation(runs: Sequence[ArrayLike], boot_means: ArrayLike, level: float = 0.95) -> float:
     """The factor by which to widen a block-bootstrap spread of a statistic pooled over ``runs`` when the series
     remember longer than the blocks see: ``√max(1, V_τ / V_boot) · t_ν / z``, ``V_τ = τ s² / N`` the long-run
@@ -156,15 +168,11 @@ def long_memory_inflation(runs: Sequence[ArrayLike], boot_means: ArrayLike, leve
     from ``N / τ`` independent spells only. 1 with fewer than 2 values or no bootstrap spread."""
     from scipy.stats import norm, t
 
-    parts = [np.asarray(r, float).reshape(-1) for r in runs]
-    x = np.concatenate(parts) if parts else np.empty(0)
-    x = x[np.isfinite(x)]
-    bm = np.asarray(boot_means, float)
-    bm = bm[np.isfinite(bm)]
-    if len(x) < 2 or len(bm) < 2 or float(np.var(bm, ddof=1)) <= 0.0:
+    parts, x, v_boot = _values_and_boot_variance(runs, boot_means)
+    if len(x) < 2 or v_boot <= 0.0:
         return 1.0
     tau = runs_autocorrelation_time(parts)
-    ratio = tau * float(np.var(x, ddof=1)) / len(x) / float(np.var(bm, ddof=1))
+    ratio = tau * float(np.var(x, ddof=1)) / len(x) / v_boot
     q = (1.0 + level) / 2.0
     nu = max(1.0, len(x) / tau - 1.0)
     return float(np.sqrt(max(1.0, ratio)) * t.ppf(q, nu) / norm.ppf(q))
@@ -182,15 +190,11 @@ def batch_means_inflation(runs: Sequence[ArrayLike], boot_means: ArrayLike, leve
     ``2·batches`` values or no bootstrap spread."""
     from scipy.stats import norm, t
 
-    parts = [np.asarray(r, float).reshape(-1) for r in runs]
-    x = np.concatenate(parts) if parts else np.empty(0)
-    x = x[np.isfinite(x)]
-    bm = np.asarray(boot_means, float)
-    bm = bm[np.isfinite(bm)]
-    if len(x) < 2 * batches or len(bm) < 2 or float(np.var(bm, ddof=1)) <= 0.0:
+    _, x, v_boot = _values_and_boot_variance(runs, boot_means)
+    if len(x) < 2 * batches or v_boot <= 0.0:
         return 1.0
     means = np.array([c.mean() for c in np.array_split(x, batches)])
-    ratio = float(np.var(means, ddof=1)) / batches / float(np.var(bm, ddof=1))
+    ratio = float(np.var(means, ddof=1)) / batches / v_boot
     if ratio <= 1.0:
         return 1.0
     q = (1.0 + level) / 2.0
