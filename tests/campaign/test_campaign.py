@@ -71,6 +71,8 @@ def test_rows_and_resume(tmp_path, count_simulations):
         assert r["tuning"] == "synthetic" and r["error"] == ""
         assert 0 < int(r["n_common"]) <= int(r["n_instants"]) == 25
         assert 0.0 <= float(r["ahed"]) < 1.0
+        # the lidar's sensor-level part (S7) beside S5, inside it (S5 = 1 − Π(1 − part))
+        assert float(r["score_sensor_ci_low"]) <= float(r["score_sensor"]) <= float(r["score_overall"])
     table = json.loads((out / "campaign.json").read_text())
     assert table["engine"] == "sequential" and table["failed"] == 0 and table["rows"] == 4
     assert table["grid"]["varied"] == ["lidar_mode"] and table["grid"]["jobs"] == 2 and table["grid"]["reference_jobs"] == 1

@@ -68,12 +68,16 @@ def test_sweep_files(small_sweep):
     assert all(int(r["n_common"]) > 0 and r["score"] for r in rows)
     assert {r["reference_seed"] for r in rows} == {"1001", "1002"}
     assert all(float(r["score_ci_low"]) <= float(r["score"]) <= float(r["score_ci_high"]) for r in rows)
+    # the sensor-level part (S7) beside S5, with its own interval: what ranks sensor models (evaluation 12)
+    assert all(float(r["sensor_ci_low"]) <= float(r["sensor"]) <= float(r["sensor_ci_high"]) for r in rows)
+    assert all(0.0 <= float(r["sensor"]) <= float(r["score"]) for r in rows)  # S5 ≥ each of its factors
     assert (small_sweep / "sweep.png").stat().st_size > 10_000
     assert len(list((small_sweep / "jobs").glob("*.json"))) == 2 * (2 + 2 + 2)  # per seed: reference, model, 4 copies
     table = json.loads((small_sweep / "sweep.json").read_text())
     assert table["settings"]["comparison"]["reference"] == "the reference run of seed s + 1000"
     assert table["settings"]["reference_model"]["range_noise"] == DEGRADATIONS["noise"].reference
     assert table["floor"]["score"]["mean"] > 0
+    assert set(table["spearman"]) == {"score", "sensor", "ahed"} and table["floor"]["sensor"]["mean"] > 0
     # the same command again resumes: every job is found finished, the files come out the same
     before = (small_sweep / "sweep.csv").read_bytes()
     args = [
@@ -194,6 +198,13 @@ def test_spearman_by_kind_hand_values():
     # cleaner: seed 1 rises (0.1 → 0.4), seed 2 falls (0.2 → 0.15): two points give ±1
     assert clean.rho_per_seed == {1: pytest.approx(1.0), 2: pytest.approx(-1.0)}
     assert (clean.seed_min, clean.seed_max) == (pytest.approx(-1.0), pytest.approx(1.0))
+
+
+def test_sweep_row_metrics_by_name():
+    r = SweepRow("noise", 0.2, 1, 1001, 0.4, 0.3, 0.5, 0.2, 10, 0.0, 1, 0.05, 0.01, 0.09)
+    assert (r.value("score"), r.value("sensor"), r.value("ahed")) == (0.4, 0.05, 0.2)
+    with pytest.raises(ValueError, match="unknown sweep metric 'S9'.*score, sensor, ahed"):
+        r.value("S9")
 
 
 def test_cli_bad_input(tmp_path, capsys):

@@ -34,6 +34,9 @@ TARGET_COLUMNS: tuple[str, ...] = (
     "score_overall",
     "score_overall_ci_low",
     "score_overall_ci_high",
+    "score_sensor",
+    "score_sensor_ci_low",
+    "score_sensor_ci_high",
     "ahed",
     "ahed_printed",
     "n_instants",
@@ -50,10 +53,17 @@ TARGET_COLUMNS: tuple[str, ...] = (
 """What :func:`target_row` returns, in column order."""
 
 
+SENSOR_PARTS = ("lidar_returns", "radar_sensor")
+"""The score's sensor-level part by sensor (S7 for a lidar; the radar sensor score): what ranks *sensor models*
+(docs/fidelity-score.md, evaluation 12), where S5 ranks whole pipelines."""
+
+
 def target_row(t: TargetComparison, comparison: Comparison) -> dict[str, Any]:
     """The per-target columns of results.csv (:data:`TARGET_COLUMNS`) of one target of one comparison."""
     real, synth = comparison.real.false_tracks, comparison.synthetic.false_tracks
     overall = comparison.score and comparison.score.overall
+    plots = comparison.score.plots if comparison.score else {}
+    sensor = next((plots[k] for k in SENSOR_PARTS if k in plots and plots[k].value is not None), None)
     return {
         "tuning": comparison.tuning,
         "target": t.target,
@@ -64,6 +74,9 @@ def target_row(t: TargetComparison, comparison: Comparison) -> dict[str, Any]:
         "score_overall": overall and overall.value,
         "score_overall_ci_low": overall and overall.ci_low,
         "score_overall_ci_high": overall and overall.ci_high,
+        "score_sensor": sensor and sensor.value,
+        "score_sensor_ci_low": sensor and sensor.ci_low,
+        "score_sensor_ci_high": sensor and sensor.ci_high,
         "ahed": t.ahed,
         "ahed_printed": t.ahed_printed,
         "n_instants": t.n_instants,

@@ -74,6 +74,14 @@ class _SweepCommand(TyperCommand):
         super().format_help(ctx, formatter)
 
 
+def _rho_text(r: Any) -> str:
+    """A :class:`~seatwin.sweep.results.KindSpearman` as "ρ over every point (per seed min…max)"; – where undefined."""
+    if r is None or r.rho_points is None:
+        return "–"
+    band = "–" if r.seed_min is None else f"{r.seed_min:.2f}…{r.seed_max:.2f}"
+    return f"{r.rho_points:.2f} (per seed {band})"
+
+
 def register(app: typer.Typer) -> None:
     @app.command("sweep", help=_HELP, cls=_SweepCommand)
     def sweep_cmd(
@@ -156,6 +164,7 @@ def register(app: typer.Typer) -> None:
         with progress_counter("sweep", progress, min_total=1) as advance:
             result = run_sweep(out, settings, workers=workers, address=address, progress=advance, overwrite=overwrite)
         csv_path, json_path, png = write_sweep(out, result)
+        sensor_rho = spearman_by_kind(result, "sensor")
         for kind, by_dir in spearman_by_kind(result, "score").items():
             means = ", ".join(
                 f"{s.strength:g}: {s.mean:.3f}" if s.mean is not None else f"{s.strength:g}: –"
@@ -163,9 +172,8 @@ def register(app: typer.Typer) -> None:
             )
             typer.echo(f"{kind:12s} mean score by strength {means}")
             for direction, r in by_dir.items():
-                band = "–" if r.seed_min is None else f"{r.seed_min:.2f}…{r.seed_max:.2f}"
-                pts = "–" if r.rho_points is None else f"{r.rho_points:.2f}"
-                typer.echo(f"{'':12s} {direction:8s} ρ = {pts} (per seed {band})")
+                sensor = _rho_text(sensor_rho[kind].get(direction))
+                typer.echo(f"{'':12s} {direction:8s} ρ = {_rho_text(r)}; sensor-level part ρ = {sensor}")
         floor = result.floor("score")
         if floor:
             typer.echo(f"floor (reference model vs the reference run of another seed): mean score {sum(floor) / len(floor):.3f}")

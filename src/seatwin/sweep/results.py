@@ -15,7 +15,8 @@ from seatwin.sweep.degradations import degradation
 from seatwin.sweep.settings import SweepSettings
 
 REFERENCE_KIND = "reference"
-METRICS = ("score", "ahed")
+METRICS = ("score", "sensor", "ahed")
+"""S5; the sensor-level part (S7 for a lidar), which ranks sensor models (fidelity-score.md, evaluation 12); AHED."""
 CSV_FIELDS = (
     "kind",
     "strength",
@@ -28,6 +29,9 @@ CSV_FIELDS = (
     "n_common",
     "fraction_only_one",
     "targets_with_ahed",
+    "sensor",
+    "sensor_ci_low",
+    "sensor_ci_high",
 )
 
 
@@ -35,8 +39,9 @@ CSV_FIELDS = (
 class SweepRow:
     """One copy (or the reference model) compared with the reference run of another seed.
 
-    ``score``: the overall fidelity score (S5) with its bootstrap interval; ``ahed`` the mean over
-    targets of AHED (5.34); ``None`` where undefined. ``fraction_only_one`` is the mean over
+    ``score``: the overall fidelity score (S5) with its bootstrap interval; ``sensor``: its sensor-level part
+    (S7, the lidar's own outputs against the truth) with its interval; ``ahed`` the mean over targets of AHED
+    (5.34); ``None`` where undefined. ``fraction_only_one`` is the mean over
     targets of the share of instants only one dataset tracked the target (what AHED cannot see).
     """
 
@@ -51,9 +56,14 @@ class SweepRow:
     n_common: int
     fraction_only_one: float | None
     targets_with_ahed: int
+    sensor: float | None = None
+    sensor_ci_low: float | None = None
+    sensor_ci_high: float | None = None
 
     def value(self, metric: str) -> float | None:
-        return self.score if metric == "score" else self.ahed
+        if metric not in METRICS:
+            raise ValueError(f"unknown sweep metric {metric!r}: expected one of {', '.join(METRICS)}")
+        return getattr(self, metric)
 
 
 @dataclass(frozen=True)

@@ -26,7 +26,8 @@ SWEEP_OUTPUTS = ("sweep.csv", "sweep.json", "sweep.png")
 
 
 def _row(kind: str, strength: float, seed: int, ref_seed: int, rows: list[dict[str, Any]]) -> SweepRow:
-    """The overall fidelity score (S5) and AHED (mean over targets) of one comparison's per-target ``rows``."""
+    """The overall fidelity score (S5), its sensor-level part and AHED (mean over targets) of one comparison's
+    per-target ``rows``."""
     ahed = [r["ahed"] for r in rows if r["ahed"] is not None]
     frac = [r["fraction_only_one"] for r in rows if r["fraction_only_one"] is not None]
     first = rows[0] if rows else {}
@@ -42,6 +43,9 @@ def _row(kind: str, strength: float, seed: int, ref_seed: int, rows: list[dict[s
         int(sum(r["n_common"] for r in rows)),
         float(np.mean(frac)) if frac else None,
         len(ahed),
+        first.get("score_sensor"),
+        first.get("score_sensor_ci_low"),
+        first.get("score_sensor_ci_high"),
     )
 
 
