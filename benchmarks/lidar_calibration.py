@@ -13,6 +13,12 @@ track once, per minute), over the pairs.
     .venv/bin/python benchmarks/lidar_calibration.py --pairs 50 --model-runs 3 --duration 20 --base 2040 --workers 2
     .venv/bin/python benchmarks/lidar_calibration.py --pairs 50 --model-runs 3 --duration 20 --base 2040 --workers 2 \
         --targets-only
+
+``--terms-only``: the signed lidar terms alone, with the time design (docs/fidelity-score.md, *Time design of the
+lidar terms*) on and off over the same pairs, and the mean width of each difference's interval (evaluation 14):
+
+    .venv/bin/python benchmarks/lidar_calibration.py --pairs 50 --duration 20 --base 5000 --workers 2 --terms-only
+    .venv/bin/python benchmarks/lidar_calibration.py --pairs 50 --duration 60 --base 5200 --workers 2 --terms-only
 """
 
 from __future__ import annotations
@@ -67,6 +73,57 @@ def score_one(pair: tuple[int, ...], scenario: str, duration: float, cache: str,
     return out
 
 
+def score_terms(pair: tuple[int, ...], scenario: str, duration: float, cache: str, pooled: dict[str, float]) -> dict[str, Any]:
+    """Coverage flags and the difference's interval width of every signed lidar term of one pair, with the time
+    design on and off."""
+    from seatwin.evaluation.lidar_terms import lidar_terms, run_lidar_samples
+    from seatwin.evaluation.score import ScoreOptions
+
+    a, *b = load_runs([(scenario, "default", s) for s in pair], duration, cache)
+    sa, sb = run_lidar_samples([a["tracks"]], a["truth"]), run_lidar_samples([r["tracks"] for r in b], a["truth"])
+    out: dict[str, Any] = {"seeds": pair, "signed": {}}
+    for tag, design in (("design", True), ("plain", False)):
+        for k, t in lidar_terms(sa, sb, ScoreOptions(lidar_design=design)).items():  # type: ignore[arg-type]
+            if t.difference is not None:
+                out["signed"].setdefault(tag, {})[k] = {
+                    "difference": t.difference,
+                    "width": float(np.diff(t.difference_ci)[0]),  # type: ignore[arg-type]
+                    "diff_covers_0": _holds(t.difference_ci, 0.0),
+                    "a_covers_pooled": _holds(t.real_ci, pooled.get(k, np.nan)),
+                }
+    return out
+
+
+def terms_table(res: list[dict[str, Any]], pooled: dict[str, float]) -> dict[str, Any]:
+    """Per term and setting: the coverage shares, the mean interval width and the pairs' spread of the difference."""
+    table: dict[str, Any] = {}
+    print("| lidar term | pooled | design on: diff / A | off: diff / A | mean width on / off | SD of the difference |")
+    for k, v in pooled.items():
+        row: dict[str, Any] = {"pooled": v}
+        for tag in ("design", "plain"):
+            got = [r["signed"].get(tag, {}).get(k) for r in res]
+            got = [g for g in got if g is not None]
+            row[tag] = {
+                "diff_covers_0": share([g["diff_covers_0"] for g in got]),
+                "a_covers_pooled": share([g["a_covers_pooled"] for g in got]),
+                "mean_width": float(np.mean([g["width"] for g in got])) if got else None,
+                "sd_difference": float(np.std([g["difference"] for g in got], ddof=1)) if len(got) > 1 else None,
+            }
+        on, off = row["design"], row["plain"]
+        table[k] = row
+
+        def pct(c: tuple[int, int]) -> str:
+            return f"{c[0]}/{c[1]}"
+
+        w = "–" if on["mean_width"] is None else f"{on['mean_width']:.4g} / {off['mean_width']:.4g}"
+        sd = "–" if on["sd_difference"] is None else f"{on['sd_difference']:.4g}"
+        print(
+            f"| {k} | {v:.4g} | {pct(on['diff_covers_0'])} / {pct(on['a_covers_pooled'])} | "
+            f"{pct(off['diff_covers_0'])} / {pct(off['a_covers_pooled'])} | {w} | {sd} |"
+        )
+    return table
+
+
 def score_targets(pair: tuple[int, ...], scenario: str, duration: float, cache: str) -> dict[str, Any]:
     """``--targets-only``: coverage flags of the target terms S1–S3 and of their mean S̄ (S5 without its plot parts),
     without (``within``) and with (``spread``) the run-to-run spread."""
@@ -112,6 +169,7 @@ def main() -> None:
     ap.add_argument("--cache", default="/tmp/seatwin-lidarbench")
     ap.add_argument("--out", default=None)
     ap.add_argument("--targets-only", action="store_true", help="only the target terms and their mean (K ≥ 2)")
+    ap.add_argument("--terms-only", action="store_true", help="only the signed lidar terms, time design on and off")
     a = ap.parse_args()
     t0 = time.perf_counter()
     k = a.model_runs + 1
@@ -136,6 +194,16 @@ def main() -> None:
     runs = load_runs([(a.scenario, "default", s) for s in seeds], a.duration, a.cache)
     every = run_lidar_samples([r["tracks"] for r in runs], runs[0]["truth"])
     pooled = {k: t.real for k, t in lidar_terms(every, every).items() if t.real is not None}  # type: ignore[arg-type]
+    if a.terms_only:
+        res = parallel_map(
+            partial(score_terms, scenario=a.scenario, duration=a.duration, cache=a.cache, pooled=pooled), pairs, a.workers
+        )
+        took = f"runs {t1 - t0:.0f} s, scoring {time.perf_counter() - t1:.0f} s"
+        print(f"{a.pairs} pairs of {a.scenario} ({a.duration:g} s): {took}")
+        table = terms_table(res, pooled)
+        if a.out:
+            Path(a.out).write_text(json.dumps({"args": vars(a), "table": table, "pairs": res}, indent=1))
+        return
     res = parallel_map(
         partial(score_one, scenario=a.scenario, duration=a.duration, cache=a.cache, pooled=pooled), pairs, a.workers
     )

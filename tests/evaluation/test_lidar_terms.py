@@ -24,6 +24,7 @@ from seatwin.evaluation.lidar_terms import (
     lidar_terms,
     pooled_return,
     return_spreads,
+    time_design_residuals,
 )
 from seatwin.evaluation.score import ScoreOptions, poisson_hellinger
 from seatwin.evaluation.tracks_io import PlotLog, Tracks
@@ -135,6 +136,53 @@ def test_lidar_terms_name_the_parameter_and_its_direction():
     assert s_thick.counts["d_thickness_25_50m"] > 0.5 and s_thick.counts["d_pd_25_50m"] < 0.1
     again = lidar_returns_score(real, thick, o)
     assert (again.value, again.ci_low, again.ci_high) == (s_thick.value, s_thick.ci_low, s_thick.ci_high)
+
+
+def _pass(rng: np.random.Generator, n: int = 300, noise: float = 0.05, shift: float = 0.0) -> LidarReturnSample:
+    """A target passing at 10–20 m: its returns' width follows its aspect along the pass (a shared pattern, 1–3 m),
+    plus independent per-scan noise; every scan has a return."""
+    t = np.linspace(0.0, 1.0, n)
+    width = 2.0 + np.sin(2 * np.pi * t) + shift + rng.normal(0.0, noise, n)
+    ones = np.ones(n)
+    return LidarReturnSample(15.0 + 5.0 * np.cos(np.pi * t), 40.0 * ones, 0.3 * ones, width, 0.05 * ones)
+
+
+def test_time_design_residuals_hand_values():
+    spec = lidar_term_specs()["width_0_25m"]
+    ones = np.ones(4)
+    a = LidarReturnSample(np.array([10.0, 10.0, 30.0, 10.0]), 9 * ones, ones, np.array([1.0, 3.0, 7.0, 5.0]), ones)
+    b = LidarReturnSample(np.array([10.0, 10.0, 10.0, 10.0]), 9 * ones, ones, np.array([3.0, 5.0, 2.0, 7.0]), ones)
+    # pooled finite values of target "t": scan indices 0,1,3 (run a; scan 2 is beyond 25 m) and 0,1,2,3 (run b), N = 7,
+    # B = round(√7) = 3 equal-count bins of the index: cuts at the 1/3 and 2/3 quantiles of (0,0,1,1,2,3,3) = 1, 2
+    # (a value on a cut goes up) → bins {0,0} (mean of 1, 3: 2), {1,1} (3, 5: 4), {2,3,3} (2, 5, 7: 14/3); dof √(7/4)
+    res = time_design_residuals([{"t": a}, {"t": b}], spec)
+    dof = np.sqrt(7 / 4)
+    np.testing.assert_allclose(res[0], np.array([-1.0, -1.0, np.nan, 1 / 3]) * dof)
+    np.testing.assert_allclose(res[1], np.array([1.0, 1.0, -8 / 3, 7 / 3]) * dof)
+
+
+def test_time_design_gives_intervals_the_size_of_the_sampling_spread():
+    """Two sides sharing a pass's aspect pattern: without the design the difference's interval is many times the
+    difference's real spread between pairs (blocks draw more or fewer of the pattern's phases); with it, near it —
+    and a real width error of 0.05 m is then resolved."""
+    o_on, o_off = ScoreOptions(n_boot=200, lidar_design=True), ScoreOptions(n_boot=200)
+    diffs, se_on, se_off, held = [], [], [], 0
+    for k in range(12):
+        rng = np.random.default_rng(100 + k)
+        a, b = [{"v": _pass(rng)}], [{"v": _pass(rng)}]
+        on, off = lidar_terms(a, b, o_on)["width_0_25m"], lidar_terms(a, b, o_off)["width_0_25m"]
+        assert on.difference == off.difference  # the value is the design's to leave alone
+        diffs.append(on.difference)
+        se_on.append(np.diff(on.difference_ci)[0] / 3.92)
+        se_off.append(np.diff(off.difference_ci)[0] / 3.92)
+        held += on.difference_ci[0] <= 0.0 <= on.difference_ci[1]
+    sd = 0.05 * np.sqrt(2 / 300)  # the difference of two means of 300 independent N(0, 0.05²)
+    assert np.mean(se_off) > 5 * sd and 0.7 * sd < np.mean(se_on) < 2.0 * sd, (np.mean(se_off), np.mean(se_on), sd)
+    assert np.std(diffs, ddof=1) < 2.0 * sd and held >= 10
+    rng = np.random.default_rng(7)
+    wider = lidar_terms([{"v": _pass(rng)}], [{"v": _pass(rng, shift=0.05)}], o_on)["width_0_25m"]
+    assert wider.resolved and "too wide" in wider.sentence()
+    assert not lidar_terms([{"v": _pass(rng)}], [{"v": _pass(rng, shift=0.05)}], o_off)["width_0_25m"].resolved
 
 
 def test_combined_distance_is_the_family_weighted_mean():

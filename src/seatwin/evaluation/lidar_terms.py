@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seatwin.evaluation.bootstrap import circular_block_indices, runs_block_length
-from seatwin.evaluation.plot_terms import SignedTerm, TermSpec, signed_term
+from seatwin.evaluation.plot_terms import SignedTerm, TermSpec, equal_count_bins, signed_term
 from seatwin.evaluation.score import ScoreOptions, ScoreValue, _refused, _replicates, _with_ci, in_window
 from seatwin.evaluation.tracks_io import PlotLog, Tracks
 from seatwin.evaluation.truth import TruthSet
@@ -210,13 +210,33 @@ def lidar_terms(
 ) -> dict[str, SignedTerm]:
     """Every lidar sensor-level term (:func:`lidar_term_specs`) of real runs against synthetic runs (each a dict
     target → :class:`LidarReturnSample`), one by one (:func:`seatwin.evaluation.plot_terms.signed_term`)."""
+    o = options or ScoreOptions()
     rr, ss = flatten_samples(real), flatten_samples(synthetic)
-    return {
-        k: signed_term(
-            f"lidar {t.label}", t.unit, [t.series(s) for s in rr], [t.series(s) for s in ss], t.statistic, options, t.directions
+    out = {}
+    for k, t in lidar_term_specs(range_edges).items():
+        residuals = (time_design_residuals(real, t), time_design_residuals(synthetic, t)) if o.lidar_design else None
+        r, s = [t.series(x) for x in rr], [t.series(x) for x in ss]
+        out[k] = signed_term(f"lidar {t.label}", t.unit, r, s, t.statistic, o, t.directions, residuals=residuals)
+    return out
+
+
+def time_design_residuals(samples: Sequence[dict[str, LidarReturnSample]], spec: TermSpec) -> list[NDArray[np.float64]]:
+    """Per (run, target) series of one side (:func:`flatten_samples`' order): the term's values less their mean over
+    the side's runs of that target in the same time bin (:func:`~seatwin.evaluation.plot_terms.equal_count_bins` of
+    the scan index, √N bins), times the bins' dof factor; NaN where the term has none. Where the target is, and how
+    it is turned, along the trajectory is what both sides share, not sampling variation (docs/fidelity-score.md,
+    *Time design of the lidar terms*)."""
+    flat = [(name, spec.series(s)) for run in samples for name, s in sorted(run.items())]
+    out = [np.full(len(x), np.nan) for _, x in flat]
+    for name in dict.fromkeys(n for n, _ in flat):
+        mine = [i for i, (n, _) in enumerate(flat) if n == name]
+        where = {i: np.flatnonzero(np.isfinite(flat[i][1])) for i in mine}
+        bins = equal_count_bins(
+            np.concatenate([where[i] for i in mine]).astype(float), np.concatenate([flat[i][1][where[i]] for i in mine])
         )
-        for k, t in lidar_term_specs(range_edges).items()
-    }
+        for i in mine:
+            out[i][where[i]] = (flat[i][1][where[i]] - bins.expected(where[i])) * bins.dof
+    return out
 
 
 def bernoulli_hellinger(p: float, q: float) -> float:

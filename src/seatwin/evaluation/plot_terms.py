@@ -331,18 +331,37 @@ class DetectionDesign:
         return [(np.asarray(x, float) - e) * self.dof for x, e in zip(series, self.expected, strict=True)]
 
 
+@dataclass(frozen=True)
+class EqualCountBins:
+    """B = round(√N) bins holding equal numbers of N covariate values, the mean of the values in each, and the factor
+    √(N / (N − B)) that gives back the degrees of freedom the B means take — a design's expected value by bin."""
+
+    cuts: NDArray[np.float64]
+    means: NDArray[np.float64]
+    dof: float
+
+    def expected(self, covariate: ArrayLike) -> NDArray[np.float64]:
+        """The mean of the bin each of ``covariate`` falls in."""
+        return self.means[np.searchsorted(self.cuts, np.asarray(covariate, float), side="right")]
+
+
+def equal_count_bins(covariate: ArrayLike, values: ArrayLike) -> EqualCountBins:
+    """The :class:`EqualCountBins` of ``values`` over ``covariate`` (same length, finite)."""
+    c, x = np.asarray(covariate, float), np.asarray(values, float)
+    n = len(c)
+    n_bins = max(1, round(math.sqrt(n)))
+    cuts = np.quantile(c, np.linspace(0.0, 1.0, n_bins + 1)[1:-1]) if n else np.empty(0)
+    b = np.searchsorted(cuts, c, side="right")
+    means = np.bincount(b, weights=x, minlength=n_bins) / np.maximum(np.bincount(b, minlength=n_bins), 1)
+    return EqualCountBins(cuts, means, math.sqrt(n / (n - n_bins)) if n > n_bins else 1.0)
+
+
 def detection_design(samples: Sequence[RadarPlotSample]) -> DetectionDesign:
     """The :class:`DetectionDesign` of one side's runs."""
     ranges = np.concatenate([s.target_range for s in samples]) if samples else np.empty(0)
     d = np.concatenate([s.detected for s in samples]) if samples else np.empty(0)
-    n = len(ranges)
-    n_bins = max(1, round(math.sqrt(n)))
-    cuts = np.quantile(ranges, np.linspace(0.0, 1.0, n_bins + 1)[1:-1]) if n else np.empty(0)
-    bins = [np.searchsorted(cuts, s.target_range, side="right") for s in samples]
-    b = np.concatenate(bins) if bins else np.empty(0, int)
-    share = np.bincount(b, weights=d, minlength=n_bins) / np.maximum(np.bincount(b, minlength=n_bins), 1)
-    dof = math.sqrt(n / (n - n_bins)) if n > n_bins else 1.0
-    return DetectionDesign([share[k] for k in bins], dof)
+    bins = equal_count_bins(ranges, d)
+    return DetectionDesign([bins.expected(s.target_range) for s in samples], bins.dof)
 
 
 @dataclass(frozen=True)

@@ -97,6 +97,12 @@ class ScoreOptions:
     (:func:`seatwin.evaluation.bootstrap.batch_means_inflation`; docs/fidelity-score.md, *Batch-means floor*) — for a
     Pd that drifts in slow spells. Off by default: it costs the Pd terms power (Pd ∓ 0.2 resolved in 19 of 20
     controlled recordings, not 20), and the full controlled check has not been re-run with it."""
+    lidar_design: bool = False
+    """Lidar signed terms: their block length, long-memory inflation and replicates from the values less their bin
+    mean over the scenario's time (√N equal-count bins of scan index, per side and target) — the range and aspect
+    pattern a trajectory imposes on a return is not sampling variation
+    (:func:`seatwin.evaluation.lidar_terms.time_design_residuals`; docs/fidelity-score.md, *Time design of the lidar
+    terms*). Off until its evaluation (14) has run."""
     clutter_gate: float = 25.0
     """A plot or confirmed track farther than this [m] from every target is clutter or a false track
     (vessels are up to ~30 m long; a radar's plots scatter further: the joyride method uses 60 m)."""
