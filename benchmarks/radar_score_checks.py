@@ -48,8 +48,6 @@ KNOWN = RadarConfig(
 AREA_KM2 = float(np.pi * (KNOWN.max_range_m**2 - KNOWN.min_range_m**2) / 1e6)
 PD_DRIFT = (0.98, 0.3)
 """Evaluation 10's Pd drift: AR(1) φ 0.98 (≈ 50-scan spells), detections kept with a factor in [0.7, 1]."""
-Z_POWER = 1.959964 + 0.841621
-"""z of a two-sided 95 % test plus z of 80 % power."""
 
 
 def _sample_args(args: tuple) -> RadarPlotSample:
@@ -229,7 +227,7 @@ pooled value)."""
 
 
 def power_pair(args: tuple[int, int]) -> dict[str, float]:
-    """The bootstrap standard deviation of each term's difference for one same-model pair at ``scans`` scans."""
+    """Each term's minimum detectable difference (``SignedTerm.detectable``) for one same-model pair at ``scans`` scans."""
     scans, p = args
     base = 3_000_000 + 1000 * p + scans
     real = [orbit_sample(KNOWN, scans, base)]
@@ -237,8 +235,8 @@ def power_pair(args: tuple[int, int]) -> dict[str, float]:
     terms = radar_plot_terms(real, synth, AREA_KM2, ScoreOptions(n_boot=300, seed=p))
     out = {}
     for k in POWER_TERMS:
-        r = terms[k].difference_replicates
-        out[k] = float(np.nanstd(r, ddof=1)) if r is not None else float("nan")
+        d = terms[k].detectable
+        out[k] = float("nan") if d is None else d
         out[k + "/value"] = float(terms[k].real) if terms[k].real is not None else float("nan")
     return out
 
@@ -251,9 +249,8 @@ def power(pairs: int = 20, scans: int = 238, workers: int = 2) -> dict[str, Any]
         for n in lengths:
             rows = list(pool.map(power_pair, [(n, p) for p in range(pairs)]))
             for k, (_, f) in POWER_TERMS.items():
-                sd = float(np.nanmean([r[k] for r in rows]))
                 scale = f if f is not None else 1.0 / float(np.nanmean([r[k + "/value"] for r in rows]))
-                mdd[k][n] = Z_POWER * sd * scale
+                mdd[k][n] = float(np.nanmean([r[k] for r in rows])) * scale
     print(f"Minimum detectable difference (95 % two-sided, 80 % power), {pairs} same-model pairs per length; "
           f"real 1 recording, model {SYNTHETIC_SEEDS} seeds")  # fmt: skip
     print(f"{'term':<18} {'unit':<8} " + " ".join(f"{n:>10d}" for n in lengths) + f" {'1×/4×':>7} {'length that halves it':>22}")

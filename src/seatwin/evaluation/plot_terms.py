@@ -139,6 +139,9 @@ class SignedTerm:
     reason: str | None = None
     counts: dict[str, float] = field(default_factory=dict)
     difference_replicates: NDArray[np.float64] | None = field(default=None, repr=False)
+    detectable: float | None = None
+    """The smallest |difference| this data resolves at the interval's level with 80 % power
+    (:func:`detectable_difference`): the term's resolution at the length at hand."""
 
     @property
     def resolved(self) -> bool:
@@ -157,6 +160,7 @@ class SignedTerm:
             f"model {self.synthetic:.3g} {_ci(self.synthetic_ci)}{u}"
             f" → model is {abs(d):.3g}{u} too {word}, difference {_ci(self.difference_ci)} "
             + ("(resolved)" if self.resolved else "(not resolved: the interval holds 0)")
+            + ("" if self.detectable is None else f"; this data resolves ≥ {self.detectable:.2g}{u}")
         )
 
     def to_dict(self) -> dict:
@@ -244,7 +248,26 @@ def signed_term(
         None,
         counts,
         diff,
+        detectable_difference(diff, o.level),
     )
+
+
+DETECTION_POWER = 0.8
+"""The power at which a term's resolution is stated (:func:`detectable_difference`)."""
+
+
+def detectable_difference(replicates: ArrayLike, level: float = 0.95, power: float = DETECTION_POWER) -> float | None:
+    """The minimum detectable difference of a signed term at the data at hand: ``(z_{(1+level)/2} + z_power) × SD``
+    of the difference's bootstrap replicates — a true difference this large is resolved (interval excluding 0) with
+    probability ``power`` (docs/fidelity-score.md, *Resolution at the data at hand*). None without two finite
+    replicates."""
+    from scipy.stats import norm
+
+    x = np.asarray(replicates, float)
+    x = x[np.isfinite(x)]
+    if len(x) < 2:
+        return None
+    return float((norm.ppf(0.5 + level / 2) + norm.ppf(power)) * np.std(x, ddof=1))
 
 
 def _mean(x: NDArray[np.float64]) -> float:
