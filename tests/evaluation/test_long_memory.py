@@ -96,7 +96,7 @@ def test_batch_means_inflation_hand_computed():
     assert batch_means_inflation([x], np.ones(5)) == 1.0  # no bootstrap spread
 
 
-def test_batch_floor_widens_drifting_detections_only_and_is_off_by_default():
+def test_batch_floor_widens_drifting_detections_only_and_is_on_by_default():
     from seatwin.evaluation.plot_terms import RadarPlotSample, radar_plot_terms
 
     rng = np.random.default_rng(4)
@@ -107,10 +107,9 @@ def test_batch_floor_widens_drifting_detections_only_and_is_off_by_default():
         return RadarPlotSample(rng.uniform(300.0, 900.0, n), err, err, np.zeros(n, dtype=np.int64))
 
     real, synth = [drifting()], [drifting(), drifting()]
-    base = ScoreOptions(n_boot=300, seed=0)
-    off = radar_plot_terms(real, synth, 1.0, base)
-    on = radar_plot_terms(real, synth, 1.0, ScoreOptions(n_boot=300, seed=0, batch_floor=True))
-    assert ScoreOptions().batch_floor is False
+    off = radar_plot_terms(real, synth, 1.0, ScoreOptions(n_boot=300, seed=0, batch_floor=False))
+    on = radar_plot_terms(real, synth, 1.0, ScoreOptions(n_boot=300, seed=0))
+    assert ScoreOptions().batch_floor is True  # since evaluation 13 (docs/fidelity-score.md)
     assert on["pd_all"].real == off["pd_all"].real  # the values stay; only the spread may grow
     assert np.std(on["pd_all"].difference_replicates) >= np.std(off["pd_all"].difference_replicates)
     key = "memory_inflation_synthetic"  # two runs: here the autocorrelation time misses the drift
