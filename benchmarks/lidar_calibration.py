@@ -94,6 +94,10 @@ def score_terms(pair: tuple[int, ...], scenario: str, duration: float, cache: st
     return out
 
 
+def _count(c: tuple[int, int]) -> str:
+    return f"{c[0]}/{c[1]}"
+
+
 def terms_table(res: list[dict[str, Any]], pooled: dict[str, float]) -> dict[str, Any]:
     """Per term and setting: the coverage shares, the mean interval width and the pairs' spread of the difference."""
     table: dict[str, Any] = {}
@@ -111,15 +115,11 @@ def terms_table(res: list[dict[str, Any]], pooled: dict[str, float]) -> dict[str
             }
         on, off = row["design"], row["plain"]
         table[k] = row
-
-        def pct(c: tuple[int, int]) -> str:
-            return f"{c[0]}/{c[1]}"
-
         w = "–" if on["mean_width"] is None else f"{on['mean_width']:.4g} / {off['mean_width']:.4g}"
         sd = "–" if on["sd_difference"] is None else f"{on['sd_difference']:.4g}"
         print(
-            f"| {k} | {v:.4g} | {pct(on['diff_covers_0'])} / {pct(on['a_covers_pooled'])} | "
-            f"{pct(off['diff_covers_0'])} / {pct(off['a_covers_pooled'])} | {w} | {sd} |"
+            f"| {k} | {v:.4g} | {_count(on['diff_covers_0'])} / {_count(on['a_covers_pooled'])} | "
+            f"{_count(off['diff_covers_0'])} / {_count(off['a_covers_pooled'])} | {w} | {sd} |"
         )
     return table
 

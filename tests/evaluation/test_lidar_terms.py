@@ -155,7 +155,7 @@ def test_time_design_residuals_hand_values():
     # pooled finite values of target "t": scan indices 0,1,3 (run a; scan 2 is beyond 25 m) and 0,1,2,3 (run b), N = 7,
     # B = round(√7) = 3 equal-count bins of the index: cuts at the 1/3 and 2/3 quantiles of (0,0,1,1,2,3,3) = 1, 2
     # (a value on a cut goes up) → bins {0,0} (mean of 1, 3: 2), {1,1} (3, 5: 4), {2,3,3} (2, 5, 7: 14/3); dof √(7/4)
-    res = time_design_residuals([{"t": a}, {"t": b}], spec)
+    res = time_design_residuals([spec.series(a), spec.series(b)], ["t", "t"])
     dof = np.sqrt(7 / 4)
     np.testing.assert_allclose(res[0], np.array([-1.0, -1.0, np.nan, 1 / 3]) * dof)
     np.testing.assert_allclose(res[1], np.array([1.0, 1.0, -8 / 3, 7 / 3]) * dof)

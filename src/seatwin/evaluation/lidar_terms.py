@@ -212,30 +212,35 @@ def lidar_terms(
     target → :class:`LidarReturnSample`), one by one (:func:`seatwin.evaluation.plot_terms.signed_term`)."""
     o = options or ScoreOptions()
     rr, ss = flatten_samples(real), flatten_samples(synthetic)
+    names_r, names_s = flatten_names(real), flatten_names(synthetic)
     out = {}
     for k, t in lidar_term_specs(range_edges).items():
-        residuals = (time_design_residuals(real, t), time_design_residuals(synthetic, t)) if o.lidar_design else None
         r, s = [t.series(x) for x in rr], [t.series(x) for x in ss]
+        residuals = (time_design_residuals(r, names_r), time_design_residuals(s, names_s)) if o.lidar_design else None
         out[k] = signed_term(f"lidar {t.label}", t.unit, r, s, t.statistic, o, t.directions, residuals=residuals)
     return out
 
 
-def time_design_residuals(samples: Sequence[dict[str, LidarReturnSample]], spec: TermSpec) -> list[NDArray[np.float64]]:
-    """Per (run, target) series of one side (:func:`flatten_samples`' order): the term's values less their mean over
-    the side's runs of that target in the same time bin (:func:`~seatwin.evaluation.plot_terms.equal_count_bins` of
-    the scan index, √N bins), times the bins' dof factor; NaN where the term has none. Where the target is, and how
+def flatten_names(samples: Sequence[dict[str, LidarReturnSample]]) -> list[str]:
+    """The target of each series of :func:`flatten_samples`, in its order."""
+    return [name for run in samples for name in sorted(run)]
+
+
+def time_design_residuals(series: Sequence[NDArray[np.float64]], names: Sequence[str]) -> list[NDArray[np.float64]]:
+    """Per (run, target) ``series`` of one term on one side, each of target ``names[i]``: the values less their mean
+    over the side's series of that target in the same time bin (:func:`~seatwin.evaluation.plot_terms.equal_count_bins`
+    of the scan index, √N bins), times the bins' dof factor; NaN where the term has none. Where the target is, and how
     it is turned, along the trajectory is what both sides share, not sampling variation (docs/fidelity-score.md,
     *Time design of the lidar terms*)."""
-    flat = [(name, spec.series(s)) for run in samples for name, s in sorted(run.items())]
-    out = [np.full(len(x), np.nan) for _, x in flat]
-    for name in dict.fromkeys(n for n, _ in flat):
-        mine = [i for i, (n, _) in enumerate(flat) if n == name]
-        where = {i: np.flatnonzero(np.isfinite(flat[i][1])) for i in mine}
+    out = [np.full(len(x), np.nan) for x in series]
+    for name in dict.fromkeys(names):
+        mine = [i for i, n in enumerate(names) if n == name]
+        where = {i: np.flatnonzero(np.isfinite(series[i])) for i in mine}
         bins = equal_count_bins(
-            np.concatenate([where[i] for i in mine]).astype(float), np.concatenate([flat[i][1][where[i]] for i in mine])
+            np.concatenate([where[i] for i in mine]).astype(float), np.concatenate([series[i][where[i]] for i in mine])
         )
         for i in mine:
-            out[i][where[i]] = (flat[i][1][where[i]] - bins.expected(where[i])) * bins.dof
+            out[i][where[i]] = (series[i][where[i]] - bins.expected(where[i])) * bins.dof
     return out
 
 

@@ -175,7 +175,7 @@ def controlled_recording(
     scans: int = 238,
     n_boot: int = 200,
     models: dict[str, RadarConfig] | None = None,
-    batch_floor: bool = True,
+    batch_floor: bool = ScoreOptions.batch_floor,
 ) -> dict[str, Any]:
     """Controlled recording ``index`` (:func:`draw_controlled`, ``scans`` scans): the real recording and
     :data:`SYNTHETIC_SEEDS` per candidate (``models``, default :func:`candidate_models`), ranked by the radar sensor
