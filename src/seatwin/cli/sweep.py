@@ -15,7 +15,8 @@ from seatwin.errors import ParameterError
 _HELP = (
     "Fidelity sweep: does the fidelity score rank sensor models? A reference lidar model stands in for "
     "reality; copies made by deliberately wrong models — degraded, or cleaner than the reference — are "
-    "compared with it through the tracker (fidelity score and AHED, thesis 5.2).\n\n"
+    "compared with it through the tracker (fidelity score S5, its lidar sensor-level part S7 — which ranks noise, drop "
+    "and sampling but hardly sees a mount error — and AHED, thesis 5.2).\n\n"
     "Per seed s, the reference model (VLP-16 ray casting; REFERENCE) is simulated "
     "with seed s + --reference-seed-offset (the 'real' run) and with seed s, and once per (kind, strength) "
     "with seed s; each is compared with the reference run of the other seed, as any real-versus-synthetic "
@@ -24,7 +25,7 @@ _HELP = (
     "the nominal mount). Every run is a job of the campaign engine (in this process, or on Ray with --workers "
     "/ --address); each job's outcome is kept in --out/jobs, so re-running the command resumes (other "
     "settings in the same --out: refused, or with --overwrite started afresh). Writes "
-    "sweep.csv, sweep.json (Spearman ρ per kind, direction and seed) and sweep.png into --out."
+    "sweep.csv, sweep.json (Spearman ρ of S5, S7 and AHED per kind, direction and seed) and sweep.png into --out."
 )
 
 
