@@ -20,7 +20,8 @@ _JOYRIDE_HELP = (
     "indistinguishable) and the models are ranked by it; --ablations adds deliberately wrong models derived "
     "from the fitted one (no_bias, wide_noise, low_pd, heavy_clutter, too_clean), which should rank below it. "
     "Beside the score, radar plot-level terms (plots against the GNSS truth: bearing and range bias and σ, Pd by "
-    "range, clutter) give real, model and the signed difference with intervals: which parameter is off, which way."
+    "range, clutter) give real, model and the signed difference with intervals: which parameter is off, which way, "
+    "and the smallest error this recording can resolve."
 )
 
 
